@@ -1,0 +1,108 @@
+//! Reflectance models. Each evaluates the *projected* BRDF f·cosθi·cosθr (sr⁻¹):
+//! Eq. 10 multiplies f_r by both cosines, so evaluating the product directly keeps
+//! every model finite at grazing angles (PHYSICS.md §3) — no division by a cosine.
+
+pub mod ashikhmin_shirley;
+pub mod fresnel;
+pub mod lambert;
+pub mod rough_conductor;
+pub mod seed_microfacet;
+
+pub use ashikhmin_shirley::AshikhminShirley;
+pub use lambert::Lambert;
+pub use rough_conductor::RoughConductor;
+pub use seed_microfacet::SeedMicrofacet;
+
+use glam::DVec3;
+
+/// Local geometry of one evaluation. All vectors unit length, in one frame.
+#[derive(Debug, Clone, Copy)]
+pub struct Frame {
+    /// Surface normal (the side being lit and seen).
+    pub n: DVec3,
+    /// Tangent, for anisotropic models; perpendicular to `n`.
+    pub t: DVec3,
+}
+
+/// A reflectance model with its parameters. An enum rather than a trait object so the
+/// per-face loop stays monomorphic and inlinable.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Brdf {
+    Lambert(Lambert),
+    SeedMicrofacet(SeedMicrofacet),
+    RoughConductor(RoughConductor),
+    AshikhminShirley(AshikhminShirley),
+}
+
+impl Brdf {
+    /// f·cosθi·cosθr for light arriving from `l` and leaving towards `v` (unit vectors).
+    /// Zero when either direction is at or below the surface. Units: sr⁻¹.
+    #[inline]
+    pub fn projected(&self, frame: &Frame, l: DVec3, v: DVec3) -> f64 {
+        let ci = frame.n.dot(l);
+        let cr = frame.n.dot(v);
+        if ci <= 0.0 || cr <= 0.0 {
+            return 0.0;
+        }
+        let value = match self {
+            Brdf::Lambert(m) => m.projected(ci, cr),
+            Brdf::SeedMicrofacet(m) => m.projected(frame.n, l, v, ci, cr),
+            Brdf::RoughConductor(m) => m.projected(frame.n, l, v, ci, cr),
+            Brdf::AshikhminShirley(m) => m.projected(frame, l, v, ci, cr),
+        };
+        // A model must never let a NaN out; treat any as no light and keep the sum clean.
+        if value.is_finite() && value > 0.0 {
+            value
+        } else {
+            0.0
+        }
+    }
+
+    /// The model's name as used in requests.
+    pub fn model_name(&self) -> &'static str {
+        match self {
+            Brdf::Lambert(_) => "lambert",
+            Brdf::SeedMicrofacet(_) => "seed-microfacet",
+            Brdf::RoughConductor(_) => "rough-conductor",
+            Brdf::AshikhminShirley(_) => "ashikhmin-shirley",
+        }
+    }
+
+    /// A copy with only the diffuse (`diffuse = true`) or only the specular part.
+    /// Used by linearity tests and by callers that want the two terms separately.
+    pub fn split(&self, diffuse: bool) -> Brdf {
+        match self {
+            Brdf::Lambert(m) => Brdf::Lambert(Lambert {
+                albedo: if diffuse { m.albedo } else { 0.0 },
+            }),
+            Brdf::SeedMicrofacet(m) => Brdf::SeedMicrofacet(SeedMicrofacet {
+                kd: if diffuse { m.kd } else { 0.0 },
+                km: if diffuse { 0.0 } else { m.km },
+                ..*m
+            }),
+            Brdf::RoughConductor(m) => Brdf::RoughConductor(RoughConductor {
+                kd: if diffuse { m.kd } else { 0.0 },
+                ks: if diffuse { 0.0 } else { m.ks },
+                ..*m
+            }),
+            Brdf::AshikhminShirley(m) => Brdf::AshikhminShirley(AshikhminShirley {
+                rd: if diffuse { m.rd } else { 0.0 },
+                specular: !diffuse && m.specular,
+                ..*m
+            }),
+        }
+    }
+}
+
+/// Half vector of `l` and `v`, or `None` when they are opposite (phase 180°), where
+/// no specular reflection towards the observer is possible.
+#[inline]
+pub(crate) fn half_vector(l: DVec3, v: DVec3) -> Option<DVec3> {
+    let h = l + v;
+    let len2 = h.length_squared();
+    if len2 < 1e-24 {
+        None
+    } else {
+        Some(h / len2.sqrt())
+    }
+}

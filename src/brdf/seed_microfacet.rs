@@ -1,0 +1,74 @@
+//! The paper's microfacet BRDF (Eqs. 6–8), as PHYSICS.md §3 restates it:
+//! f = k^D/π + k^M·C·V·F/(cosθi·cosθr), evaluated as the projected product
+//! f·cosθi·cosθr = k^D/π·cosθi·cosθr + k^M·C·V·F, which is finite at grazing angles.
+
+use super::fresnel::Fresnel;
+use super::half_vector;
+use glam::DVec3;
+use std::f64::consts::FRAC_1_PI;
+
+/// Parameters of Eqs. 6–8.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeedMicrofacet {
+    /// Diffuse coefficient k^D.
+    pub kd: f64,
+    /// Specular coefficient k^M.
+    pub km: f64,
+    /// RMS microfacet slope δ (> 0).
+    pub slope_rms: f64,
+    /// Fresnel term for the complex index n + ik.
+    pub fresnel: Fresnel,
+}
+
+impl SeedMicrofacet {
+    pub fn new(kd: f64, km: f64, slope_rms: f64, n: f64, k: f64) -> Self {
+        SeedMicrofacet {
+            kd,
+            km,
+            slope_rms,
+            fresnel: Fresnel::new(n, k),
+        }
+    }
+
+    /// f·cosθi·cosθr, sr⁻¹; `ci`, `cr` > 0 are given by the caller.
+    #[inline]
+    pub fn projected(&self, n: DVec3, l: DVec3, v: DVec3, ci: f64, cr: f64) -> f64 {
+        let diffuse = self.kd * FRAC_1_PI * ci * cr;
+        if self.km == 0.0 {
+            return diffuse;
+        }
+        let Some(h) = half_vector(l, v) else {
+            return diffuse;
+        };
+        let ca = n.dot(h);
+        if ca <= 0.0 {
+            return diffuse;
+        }
+        let cb = l.dot(h).max(0.0);
+        diffuse + self.km * slope_distribution(ca, self.slope_rms) * v_cavity(ca, cb, ci, cr) * self.fresnel.reflectance(cb)
+    }
+}
+
+/// C = exp(−tan²α/δ²)/(δ² cos⁴α): Beckmann without its 1/π (Eq. 7). tan²α is formed as
+/// (1 − cos²α)/cos²α; the exponential is tested before the division so a tiny δ at a
+/// large α gives 0, never 0·∞.
+#[inline]
+pub fn slope_distribution(cos_a: f64, slope_rms: f64) -> f64 {
+    let c2 = cos_a * cos_a;
+    let d2 = slope_rms * slope_rms;
+    let exponent = -(1.0 - c2) / (c2 * d2);
+    if exponent < -700.0 {
+        return 0.0;
+    }
+    exponent.exp() / (d2 * c2 * c2)
+}
+
+/// Torrance–Sparrow V-cavity masking/shadowing: min(1, 2cosα cosθr/cosβ, 2cosα cosθi/cosβ).
+#[inline]
+pub fn v_cavity(cos_a: f64, cos_b: f64, ci: f64, cr: f64) -> f64 {
+    if cos_b <= 0.0 {
+        return 0.0;
+    }
+    let g = 2.0 * cos_a / cos_b;
+    1.0_f64.min(g * cr).min(g * ci)
+}

@@ -1,0 +1,93 @@
+//! Ray casting against the mesh: the only file that knows obvhs.
+//!
+//! obvhs works in f32. Vertices are stored relative to the mesh's bounding-sphere
+//! centre, so f32 resolution is set by the object's size, never by the range to the
+//! observer, and ray origins are offset by a distance scaled to the object.
+
+use super::mesh::Mesh;
+use glam::{DVec3, Vec3A};
+use obvhs::cwbvh::{builder::build_cwbvh_from_tris, CwBvh};
+use obvhs::ray::Ray;
+use obvhs::triangle::Triangle;
+use obvhs::BvhBuildParams;
+use std::time::Duration;
+
+/// A BVH over the mesh's triangles for occlusion queries.
+pub struct Occluder {
+    bvh: CwBvh,
+    /// Triangles in BVH primitive order (so a callback's id indexes this directly).
+    tris: Vec<Triangle>,
+    centre: DVec3,
+    /// Offset of ray origins off the surface, m (scaled to the object).
+    offset: f64,
+}
+
+impl Occluder {
+    /// Builds the BVH once per request.
+    pub fn build(mesh: &Mesh) -> Occluder {
+        let (centre, radius) = mesh.bounding_sphere();
+        let tris: Vec<Triangle> = (0..mesh.triangles.len())
+            .map(|i| {
+                let [a, b, c] = mesh.corners(i);
+                Triangle {
+                    v0: to_f32(a - centre),
+                    v1: to_f32(b - centre),
+                    v2: to_f32(c - centre),
+                }
+            })
+            .collect();
+        let mut build_time = Duration::ZERO;
+        let bvh = build_cwbvh_from_tris(&tris, BvhBuildParams::medium_build(), &mut build_time);
+        // The callback's id indexes bvh.primitive_indices: reorder once instead of
+        // mapping on every hit test.
+        let tris = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| tris[i as usize])
+            .collect();
+        Occluder {
+            bvh,
+            tris,
+            centre,
+            // f32 carries ~6e-8 of the object's size; 2e-5 keeps well clear of that
+            // (no acne) while staying far below any feature size we model.
+            offset: 2e-5 * radius.max(f64::MIN_POSITIVE),
+        }
+    }
+
+    /// Distance by which ray origins are pushed off the surface along its normal, m.
+    pub fn offset(&self) -> f64 {
+        self.offset
+    }
+
+    /// True when the ray from `origin` (on a surface with outward normal `normal`,
+    /// facing `dir`) towards `dir` (unit) leaves the object without hitting anything.
+    #[inline]
+    pub fn is_clear(&self, origin: DVec3, normal: DVec3, dir: DVec3) -> bool {
+        let o = origin - self.centre + normal * self.offset;
+        let ray = Ray::new(to_f32(o), to_f32(dir), 0.0, f32::INFINITY);
+        self.bvh
+            .ray_traverse_miss(ray, |ray, id| self.tris[id].intersect(ray))
+    }
+
+    /// Distance to the first hit along the ray from `origin` (not offset), or `None`.
+    /// Used by the renderer and tests.
+    pub fn first_hit(&self, origin: DVec3, dir: DVec3) -> Option<(f64, usize)> {
+        let ray = Ray::new(to_f32(origin - self.centre), to_f32(dir), 0.0, f32::INFINITY);
+        let mut hit = obvhs::ray::RayHit::none();
+        if self
+            .bvh
+            .ray_traverse(ray, &mut hit, |ray, id| self.tris[id].intersect(ray))
+        {
+            let prim = self.bvh.primitive_indices[hit.primitive_id as usize] as usize;
+            Some((hit.t as f64, prim))
+        } else {
+            None
+        }
+    }
+}
+
+#[inline]
+fn to_f32(v: DVec3) -> Vec3A {
+    Vec3A::new(v.x as f32, v.y as f32, v.z as f32)
+}

@@ -1,0 +1,168 @@
+//! Faces: connected, coplanar triangles of one material merged once per request.
+//!
+//! For a distant Sun and observer a flat face has one θi and one θr, so its light is
+//! f·E·cosθi·cosθr·A with no sampling; per-epoch work then scales with faces, not
+//! triangles (a subdivided box side is one face).
+
+use super::mesh::Mesh;
+use crate::radiometry::earth::orthonormal_basis;
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// One planar face.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face {
+    /// Outward unit normal.
+    pub normal: DVec3,
+    /// Unit tangent (for anisotropic BRDFs): the direction of the face's first edge.
+    pub tangent: DVec3,
+    /// Area, m².
+    pub area: f64,
+    /// Area-weighted centroid, m.
+    pub centroid: DVec3,
+    /// Radius of the sphere about `centroid` holding the whole face, m.
+    pub radius: f64,
+    /// Index into the scene's materials.
+    pub material: u32,
+    /// Triangles (indices into the mesh) that make up the face.
+    pub triangles: Vec<u32>,
+}
+
+/// All faces of a mesh.
+#[derive(Debug, Clone, Default)]
+pub struct Faces {
+    pub faces: Vec<Face>,
+}
+
+/// Cosine above which two unit normals count as the same plane's.
+const SAME_NORMAL: f64 = 1.0 - 1e-9;
+
+impl Faces {
+    /// Groups triangles that share an edge (by vertex position), lie in one plane and
+    /// use one material. `merge = false` keeps one face per triangle.
+    pub fn build(mesh: &Mesh, merge: bool) -> Faces {
+        let n = mesh.triangles.len();
+        let (_, scale) = mesh.bounding_sphere();
+        let plane_tol = 1e-9 * scale.max(1e-300);
+        let normals: Vec<DVec3> = (0..n).map(|i| mesh.area_vector(i).normalize()).collect();
+        let mut parent: Vec<u32> = (0..n as u32).collect();
+        if merge {
+            // Weld vertices by exact position so meshes with split vertices still merge.
+            let mut weld: HashMap<[u64; 3], u32> = HashMap::new();
+            let canon: Vec<u32> = mesh
+                .vertices
+                .iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    *weld
+                        .entry([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
+                        .or_insert(i as u32)
+                })
+                .collect();
+            let mut edges: HashMap<(u32, u32), u32> = HashMap::with_capacity(n * 3 / 2);
+            for (t, tri) in mesh.triangles.iter().enumerate() {
+                for k in 0..3 {
+                    let a = canon[tri[k] as usize];
+                    let b = canon[tri[(k + 1) % 3] as usize];
+                    let key = (a.min(b), a.max(b));
+                    match edges.get(&key) {
+                        Some(&other) => {
+                            let o = other as usize;
+                            if mesh.material_ids[o] == mesh.material_ids[t]
+                                && normals[o].dot(normals[t]) > SAME_NORMAL
+                            {
+                                let p = mesh.vertices[mesh.triangles[o][0] as usize];
+                                let q = mesh.corners(t);
+                                if q.iter().all(|v| normals[o].dot(*v - p).abs() <= plane_tol) {
+                                    union(&mut parent, o as u32, t as u32);
+                                }
+                            }
+                        }
+                        None => {
+                            edges.insert(key, t as u32);
+                        }
+                    }
+                }
+            }
+        }
+        let mut index_of_root: HashMap<u32, usize> = HashMap::new();
+        let mut groups: Vec<Vec<u32>> = Vec::new();
+        for t in 0..n as u32 {
+            let r = find(&mut parent, t);
+            let g = *index_of_root.entry(r).or_insert_with(|| {
+                groups.push(Vec::new());
+                groups.len() - 1
+            });
+            groups[g].push(t);
+        }
+        let faces = groups
+            .into_iter()
+            .map(|tris| Face::from_triangles(mesh, tris))
+            .collect();
+        Faces { faces }
+    }
+
+    pub fn len(&self) -> usize {
+        self.faces.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.faces.is_empty()
+    }
+}
+
+impl Face {
+    fn from_triangles(mesh: &Mesh, triangles: Vec<u32>) -> Face {
+        let mut area_vec = DVec3::ZERO;
+        let mut area = 0.0;
+        let mut centroid = DVec3::ZERO;
+        for &t in &triangles {
+            let av = mesh.area_vector(t as usize);
+            let a = 0.5 * av.length();
+            let [p, q, r] = mesh.corners(t as usize);
+            area_vec += av;
+            area += a;
+            centroid += a * (p + q + r) / 3.0;
+        }
+        let centroid = centroid / area;
+        let normal = area_vec.normalize();
+        let radius = triangles
+            .iter()
+            .flat_map(|&t| mesh.corners(t as usize))
+            .map(|v| v.distance(centroid))
+            .fold(0.0, f64::max);
+        let [p, q, _] = mesh.corners(triangles[0] as usize);
+        let edge = q - p - normal * normal.dot(q - p);
+        let tangent = if edge.length_squared() > 0.0 {
+            edge.normalize()
+        } else {
+            orthonormal_basis(normal).0
+        };
+        Face {
+            normal,
+            tangent,
+            area,
+            centroid,
+            radius,
+            material: mesh.material_ids[triangles[0] as usize],
+            triangles,
+        }
+    }
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let p = parent[x as usize];
+        parent[x as usize] = parent[p as usize];
+        x = p;
+    }
+    x
+}
+
+fn union(parent: &mut [u32], a: u32, b: u32) {
+    let ra = find(parent, a);
+    let rb = find(parent, b);
+    if ra != rb {
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    }
+}

@@ -1,0 +1,68 @@
+//! The triangle mesh in the body frame, in f64 metres.
+
+use glam::DVec3;
+
+/// A validated triangle mesh: every index in range, every triangle non-degenerate,
+/// one material index per triangle.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions, m.
+    pub vertices: Vec<DVec3>,
+    /// Counter-clockwise (seen from outside) vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+    /// Index into the scene's materials, one per triangle.
+    pub material_ids: Vec<u32>,
+}
+
+impl Mesh {
+    /// The three corners of triangle `i`, m.
+    #[inline]
+    pub fn corners(&self, i: usize) -> [DVec3; 3] {
+        let [a, b, c] = self.triangles[i];
+        [
+            self.vertices[a as usize],
+            self.vertices[b as usize],
+            self.vertices[c as usize],
+        ]
+    }
+
+    /// Twice-area vector (b−a)×(c−a) of triangle `i`: its direction is the outward normal.
+    #[inline]
+    pub fn area_vector(&self, i: usize) -> DVec3 {
+        let [a, b, c] = self.corners(i);
+        (b - a).cross(c - a)
+    }
+
+    /// Centre of the axis-aligned bounding box and the radius of the sphere around it
+    /// that holds every vertex, m.
+    pub fn bounding_sphere(&self) -> (DVec3, f64) {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        for v in &self.vertices {
+            lo = lo.min(*v);
+            hi = hi.max(*v);
+        }
+        let centre = 0.5 * (lo + hi);
+        let radius = self
+            .vertices
+            .iter()
+            .map(|v| v.distance(centre))
+            .fold(0.0, f64::max);
+        (centre, radius)
+    }
+
+    /// Total surface area, m².
+    pub fn area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|i| 0.5 * self.area_vector(i).length())
+            .sum()
+    }
+
+    /// The same mesh with every vertex mapped by `f` (scaling, rotation in tests).
+    pub fn transformed(&self, f: impl Fn(DVec3) -> DVec3) -> Mesh {
+        Mesh {
+            vertices: self.vertices.iter().map(|v| f(*v)).collect(),
+            ..self.clone()
+        }
+    }
+}

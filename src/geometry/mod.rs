@@ -1,0 +1,11 @@
+//! Geometry: the triangle mesh, OBJ parsing, coplanar faces, convexity, ray casting.
+
+pub mod builtin;
+pub mod bvh;
+pub mod convex;
+pub mod faces;
+pub mod mesh;
+pub mod obj;
+
+pub use faces::{Face, Faces};
+pub use mesh::Mesh;

@@ -1,0 +1,59 @@
+//! Wavefront OBJ text → mesh, with materials matched by `usemtl` name.
+
+use super::mesh::Mesh;
+use glam::DVec3;
+
+/// Parses OBJ text (metres). Triangles take the index (in `material_names`) of their
+/// `usemtl` name; faces before any `usemtl` take material 0. Polygons are
+/// fan-triangulated; normals and texture coordinates are ignored (winding gives the normal).
+pub fn parse(text: &str, material_names: &[&str]) -> Result<Mesh, String> {
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        if words.next() == Some("usemtl") {
+            let name = words.next().unwrap_or("");
+            if !material_names.contains(&name) {
+                return Err(format!(
+                    "OBJ uses material `{name}`, which is not among object.materials ({})",
+                    material_names.join(", ")
+                ));
+            }
+        }
+    }
+    // tobj resolves `usemtl` only through a material library, so hand it one made of
+    // our material names; any `mtllib` in the text is ignored in its favour.
+    let mtl: String = material_names.iter().map(|n| format!("newmtl {n}\n")).collect();
+    let body: String = text
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("mtllib"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let full = format!("mtllib glint-materials\n{body}\n");
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, _) = tobj::load_obj_buf(&mut full.as_bytes(), &options, |_| {
+        tobj::load_mtl_buf(&mut mtl.as_bytes())
+    })
+    .map_err(|e| format!("cannot parse OBJ text: {e}"))?;
+    let mut mesh = Mesh::default();
+    for model in &models {
+        let m = &model.mesh;
+        let base = mesh.vertices.len() as u32;
+        for p in m.positions.chunks_exact(3) {
+            mesh.vertices
+                .push(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+        }
+        let material = m.material_id.unwrap_or(0) as u32;
+        for t in m.indices.chunks_exact(3) {
+            mesh.triangles.push([base + t[0], base + t[1], base + t[2]]);
+            mesh.material_ids.push(material);
+        }
+    }
+    if mesh.triangles.is_empty() {
+        return Err("OBJ text has no faces".into());
+    }
+    Ok(mesh)
+}

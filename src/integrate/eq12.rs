@@ -1,0 +1,157 @@
+//! One epoch of Eq. 12: E = Σ_faces (dI_sun + dI_earth)/R², with
+//! dI = f·E·cosθi·cosθr·A_visible (Eq. 10), A_visible the part of the face both lit and seen.
+//!
+//! With constant material parameters the band integral factors out of the sum: the Sun's
+//! band irradiance multiplies a purely geometric sum. A wavelength-dependent n(λ), k(λ)
+//! would evaluate the face sum per spectral bin and weight by the bin's irradiance.
+
+use super::visibility::Uncertain;
+use super::Prepared;
+use crate::brdf::Frame;
+use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
+use crate::scene::{EarthshineModel, Epoch, EpochResult};
+use glam::DVec3;
+
+/// Per-thread buffers reused across epochs.
+#[derive(Default)]
+pub struct Scratch {
+    lit: Vec<LitFace>,
+}
+
+/// A face that reflects light towards the observer at this epoch.
+struct LitFace {
+    face: u32,
+    /// +1 front side seen, −1 back side (two-sided materials).
+    side: f64,
+    /// Sun term f·cosθi·cosθr·E_s, W/(m²·sr) per m² of face.
+    sun: f64,
+    /// Earthshine term Σ f·cosθi·cosθr·E_beam, W/(m²·sr) per m² of face.
+    earth: f64,
+}
+
+/// Evaluates one epoch; returns the result and the number of rays cast.
+pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochResult, u64) {
+    let scene = p.scene;
+    let ill = &scene.illumination;
+    let range = epoch.observer.length();
+    let v = epoch.observer / range;
+    let l = epoch.sun;
+
+    let es_full = sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
+    let (hidden, earthshine) = match epoch.earth {
+        None => (0.0, earth::Earthshine::default()),
+        Some(e) => {
+            let d = e.length();
+            let e_dir = e / d;
+            let hidden = eclipse::hidden_fraction(
+                sun::angular_radius(epoch.sun_distance_m),
+                (EARTH_RADIUS_M / d).min(1.0).asin(),
+                angle_between(l, e_dir),
+            );
+            // The Earth reflects the sunlight that reaches it, which no eclipse of the
+            // object changes.
+            let shine = match ill.earthshine {
+                EarthshineModel::Off => earth::Earthshine::default(),
+                EarthshineModel::Seed => earth::seed(e_dir, ill.earth_albedo, es_full),
+                EarthshineModel::Sphere => earth::sphere(e, l, ill.earth_albedo, es_full),
+            };
+            (hidden, shine)
+        }
+    };
+    let es = es_full * (1.0 - hidden);
+
+    // Pass 1: which faces send light to the observer, and how much if fully visible.
+    scratch.lit.clear();
+    let mut unshadowed = 0.0;
+    for (i, face) in p.faces.faces.iter().enumerate() {
+        let material = &scene.materials[face.material as usize];
+        let cr = face.normal.dot(v);
+        let side = if cr > 0.0 {
+            1.0
+        } else if material.two_sided && cr < 0.0 {
+            -1.0
+        } else {
+            continue;
+        };
+        let frame = Frame {
+            n: face.normal * side,
+            t: face.tangent,
+        };
+        let sun_term = if es > 0.0 {
+            es * material.brdf.projected(&frame, l, v)
+        } else {
+            0.0
+        };
+        let earth_term: f64 = earthshine
+            .beams
+            .iter()
+            .map(|b| b.irradiance * material.brdf.projected(&frame, b.dir, v))
+            .sum();
+        if sun_term > 0.0 || earth_term > 0.0 {
+            unshadowed += (sun_term + earth_term) * face.area;
+            scratch.lit.push(LitFace {
+                face: i as u32,
+                side,
+                sun: sun_term,
+                earth: earth_term,
+            });
+        }
+    }
+
+    // Pass 2: visible fractions (all 1 without rays).
+    let mut sun_sum = 0.0;
+    let mut earth_sum = 0.0;
+    let mut lit_visible_area = 0.0;
+    let mut rays = 0u64;
+    for lf in &scratch.lit {
+        let face = &p.faces.faces[lf.face as usize];
+        let (f_sun, f_earth) = match &p.visibility {
+            None => (1.0, 1.0),
+            Some(vis) => {
+                let dirs = Uncertain {
+                    view: v,
+                    sun: (lf.sun > 0.0).then_some(l),
+                    earth: if lf.earth > 0.0 { earthshine.shadow_dir } else { None },
+                };
+                // Leaf size at which a sampling error of the whole leaf costs at most
+                // the tolerance's share of the epoch's signal.
+                let weight = lf.sun + lf.earth;
+                let min_area = scene.tolerance * unshadowed / weight;
+                let (a_sun, a_earth, n) = vis.visible_area(lf.face as usize, lf.side, &dirs, min_area);
+                rays += n;
+                (a_sun / face.area, a_earth / face.area)
+            }
+        };
+        sun_sum += lf.sun * f_sun * face.area;
+        earth_sum += lf.earth * f_earth * face.area;
+        if lf.sun > 0.0 {
+            lit_visible_area += f_sun * face.area;
+        }
+    }
+
+    let r2 = range * range;
+    let intensity = sun_sum + earth_sum;
+    let irradiance = intensity / r2;
+    let mag = magnitude::apparent(irradiance, p.sun_band_1au);
+    (
+        EpochResult {
+            t: epoch.t,
+            irradiance_w_m2: irradiance,
+            sun_w_m2: sun_sum / r2,
+            earthshine_w_m2: earth_sum / r2,
+            intensity_w_sr: intensity,
+            magnitude: mag,
+            magnitude_std: magnitude::standardised(mag, range),
+            phase_angle_deg: angle_between(l, v).to_degrees(),
+            range_m: range,
+            lit_visible_area_m2: lit_visible_area,
+            eclipse: hidden,
+        },
+        rays,
+    )
+}
+
+/// Angle between unit vectors, rad; atan2 keeps it accurate near 0 and π.
+pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b))
+}

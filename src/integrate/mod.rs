@@ -1,0 +1,155 @@
+//! The integrator: Eq. 12 summed over faces for every epoch, in parallel.
+//!
+//! ```text
+//! Scene ──prepare once──▶ Prepared (faces, convexity, BVH + occluder candidates, band integral)
+//! for each epoch (rayon): geometry → illumination (sun, eclipse, earthshine)
+//!                         → per face: BRDF × cosines × area × visible fraction → EpochResult
+//! ```
+
+pub mod eq12;
+pub mod visibility;
+
+use crate::geometry::{convex, Faces};
+use crate::radiometry::sun;
+use crate::scene::{EpochResult, Method, Response, Scene, Summary};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::time::Instant;
+use visibility::{Visibility, VisibilityMode};
+
+/// Progress and cancellation shared between a running simulation and its caller
+/// (the CLI's progress bar, the service's job status).
+#[derive(Debug, Default)]
+pub struct Progress {
+    done: AtomicUsize,
+    total: AtomicUsize,
+    cancel: AtomicBool,
+}
+
+impl Progress {
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// Epochs finished so far.
+    pub fn done(&self) -> usize {
+        self.done.load(Ordering::Relaxed)
+    }
+    /// Epochs in the running request (0 before it starts).
+    pub fn total(&self) -> usize {
+        self.total.load(Ordering::Relaxed)
+    }
+    /// Asks the running simulation to stop at the next epoch.
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+    pub fn is_cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+}
+
+/// The simulation was cancelled through [`Progress::cancel`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("cancelled")]
+pub struct Cancelled;
+
+/// Everything computed once per request.
+pub struct Prepared<'a> {
+    pub scene: &'a Scene,
+    pub faces: Faces,
+    pub convex: bool,
+    /// Ray-casting state; `None` when no rays are needed.
+    pub visibility: Option<Visibility>,
+    /// Band solar irradiance at 1 AU, W/m² (the magnitude zero point).
+    pub sun_band_1au: f64,
+    /// What was chosen and why, for `summary.method`.
+    pub method: String,
+}
+
+impl<'a> Prepared<'a> {
+    /// Merges faces, detects convexity, builds the BVH if rays are needed.
+    pub fn new(scene: &'a Scene) -> Prepared<'a> {
+        let per_triangle = scene.method == Method::Centroid;
+        let faces = Faces::build(&scene.mesh, !per_triangle);
+        let two_sided = faces
+            .faces
+            .iter()
+            .any(|f| scene.materials[f.material as usize].two_sided);
+        let convex = if two_sided {
+            convex::is_planar(&scene.mesh)
+        } else {
+            convex::is_convex(&scene.mesh, &faces)
+        };
+        let (visibility, method) = match scene.method {
+            Method::Convex => (None, "convex: back-face culling only, no rays (as requested)".to_string()),
+            Method::Auto if convex => (
+                None,
+                "auto → convex: the mesh is convex, so no face can shadow or hide another; no rays".to_string(),
+            ),
+            Method::Auto | Method::Adaptive => (
+                Some(Visibility::build(scene, &faces, VisibilityMode::Adaptive)),
+                format!(
+                    "{}adaptive: {} faces from {} triangles; rays only for faces an occluder may touch, refined to tolerance {:e}",
+                    if scene.method == Method::Auto { "auto → " } else { "" },
+                    faces.len(),
+                    scene.mesh.triangles.len(),
+                    scene.tolerance
+                ),
+            ),
+            Method::Centroid => (
+                Some(Visibility::build(scene, &faces, VisibilityMode::Centroid)),
+                "centroid: one ray per direction at each triangle's centroid (all lit or all dark)".to_string(),
+            ),
+        };
+        let ill = &scene.illumination;
+        Prepared {
+            scene,
+            faces,
+            convex,
+            visibility,
+            sun_band_1au: sun::band_irradiance_1au(ill.band_um, ill.sun_temperature_k),
+            method,
+        }
+    }
+}
+
+/// Computes the light curve of a scene.
+pub fn simulate(scene: &Scene) -> Response {
+    simulate_with(scene, &Progress::new()).expect("not cancelled")
+}
+
+/// Computes the light curve, reporting progress and honouring cancellation.
+pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
+    let start = Instant::now();
+    progress.total.store(scene.epochs.len(), Ordering::Relaxed);
+    let prepared = Prepared::new(scene);
+    let rays = AtomicU64::new(0);
+    let epochs: Vec<Option<EpochResult>> = scene
+        .epochs
+        .par_iter()
+        .map_init(eq12::Scratch::default, |scratch, epoch| {
+            if progress.is_cancelled() {
+                return None;
+            }
+            let (result, n) = eq12::evaluate(&prepared, epoch, scratch);
+            rays.fetch_add(n, Ordering::Relaxed);
+            progress.done.fetch_add(1, Ordering::Relaxed);
+            Some(result)
+        })
+        .collect();
+    if progress.is_cancelled() {
+        return Err(Cancelled);
+    }
+    let epochs: Vec<EpochResult> = epochs.into_iter().map(|e| e.ok_or(Cancelled)).collect::<Result<_, _>>()?;
+    Ok(Response {
+        summary: Summary {
+            epochs: epochs.len(),
+            triangles: scene.mesh.triangles.len(),
+            faces: prepared.faces.len(),
+            rays: rays.load(Ordering::Relaxed),
+            elapsed_ms: start.elapsed().as_secs_f64() * 1e3,
+            method: prepared.method.clone(),
+            convex: prepared.convex,
+        },
+        epochs,
+    })
+}

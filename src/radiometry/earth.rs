@@ -1,0 +1,99 @@
+//! Earthshine: sunlight reflected by the Earth onto the object.
+//!
+//! - `Seed` (the paper's Eq. 3): a parallel beam of irradiance ρE_s from the Earth's
+//!   direction, whatever the distance and Earth phase.
+//! - `Sphere`: the Earth as a Lambertian sphere of radius R_E, each point of its visible
+//!   disk radiating ρE_s·max(0, cos z)/π (z: solar zenith angle there). The visible cap is
+//!   integrated as an extended source by a quadrature uniform in solid angle, so it is
+//!   right in LEO where the Earth fills much of the sky (PHYSICS.md §2).
+
+use super::EARTH_RADIUS_M;
+use glam::DVec3;
+use std::f64::consts::{PI, TAU};
+
+/// One directional piece of earthshine: light arriving from `dir` with `irradiance`
+/// (W/m² on a surface facing `dir`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Beam {
+    pub dir: DVec3,
+    pub irradiance: f64,
+}
+
+/// Earthshine as a set of beams, plus a representative direction for shadow rays
+/// (the irradiance-weighted mean direction).
+#[derive(Debug, Clone, Default)]
+pub struct Earthshine {
+    pub beams: Vec<Beam>,
+    pub shadow_dir: Option<DVec3>,
+}
+
+/// The paper's Eq. 3: E_e = ρ E_s arriving from the Earth's centre direction.
+pub fn seed(earth_dir: DVec3, albedo: f64, sun_irradiance: f64) -> Earthshine {
+    Earthshine {
+        beams: vec![Beam {
+            dir: earth_dir,
+            irradiance: albedo * sun_irradiance,
+        }],
+        shadow_dir: Some(earth_dir),
+    }
+}
+
+/// The Earth as a sunlit Lambertian sphere, integrated over its visible cap.
+/// `earth` is the vector object → Earth centre (m), `sun_dir` the unit vector towards
+/// the Sun, `sun_irradiance` the band irradiance at the Earth (W/m²).
+pub fn sphere(earth: DVec3, sun_dir: DVec3, albedo: f64, sun_irradiance: f64) -> Earthshine {
+    let d = earth.length();
+    let e = earth / d;
+    let sin_a = (EARTH_RADIUS_M / d).min(1.0);
+    let cos_a = (1.0 - sin_a * sin_a).max(0.0).sqrt();
+    // Rings uniform in cosγ (equal solid angle) and sectors in azimuth; more of both
+    // when the Earth looks large. The midpoint rule in cosγ integrates the cosine-
+    // weighted cap exactly for uniform radiance (the view-factor check in PHYSICS.md).
+    let angular_radius = sin_a.asin();
+    let rings = ((angular_radius / 0.06).ceil() as usize).clamp(3, 12);
+    let sectors = (rings * 3).max(8);
+    let (t1, t2) = orthonormal_basis(e);
+    let p_obj = -earth; // object position relative to the Earth's centre
+    let radiance_scale = albedo * sun_irradiance / PI;
+    let d_omega = TAU * (1.0 - cos_a) / (rings * sectors) as f64;
+    let mut beams = Vec::with_capacity(rings * sectors);
+    let mut mean = DVec3::ZERO;
+    for i in 0..rings {
+        let u = cos_a + (1.0 - cos_a) * (i as f64 + 0.5) / rings as f64;
+        let s = (1.0 - u * u).max(0.0).sqrt();
+        for j in 0..sectors {
+            let phi = TAU * (j as f64 + 0.5 + 0.5 * (i % 2) as f64) / sectors as f64;
+            let dir = e * u + (t1 * phi.cos() + t2 * phi.sin()) * s;
+            // nearest intersection of the ray p_obj + t·dir with the Earth sphere
+            let b = p_obj.dot(dir);
+            let c = p_obj.length_squared() - EARTH_RADIUS_M * EARTH_RADIUS_M;
+            let disc = b * b - c;
+            if disc < 0.0 {
+                continue;
+            }
+            let t = -b - disc.sqrt();
+            let normal = (p_obj + dir * t) / EARTH_RADIUS_M;
+            let cos_z = normal.dot(sun_dir);
+            if cos_z <= 0.0 {
+                continue; // night side
+            }
+            let irradiance = radiance_scale * cos_z * d_omega;
+            mean += dir * irradiance;
+            beams.push(Beam { dir, irradiance });
+        }
+    }
+    let shadow_dir = (mean.length_squared() > 0.0).then(|| mean.normalize());
+    Earthshine { beams, shadow_dir }
+}
+
+/// Two unit vectors completing `n` to a right-handed orthonormal basis.
+pub fn orthonormal_basis(n: DVec3) -> (DVec3, DVec3) {
+    // Duff et al. 2017, branchless ONB
+    let sign = 1.0_f64.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        DVec3::new(b, sign + n.y * n.y * a, -n.y),
+    )
+}

@@ -1,0 +1,33 @@
+//! The light curve as CSV: one row per epoch, the JSON fields as columns.
+
+use crate::scene::Response;
+use std::fmt::Write;
+
+/// Column names, in order.
+pub const HEADER: &str = "t,irradiance_w_m2,sun_w_m2,earthshine_w_m2,intensity_w_sr,magnitude,magnitude_std,phase_angle_deg,range_m,lit_visible_area_m2,eclipse";
+
+/// CSV text with a header; an absent magnitude (no light) is an empty cell.
+pub fn to_csv(response: &Response) -> String {
+    let mut s = String::with_capacity(64 + response.epochs.len() * 160);
+    s.push_str(HEADER);
+    s.push('\n');
+    let opt = |m: Option<f64>| m.map(|x| format!("{x:.6}")).unwrap_or_default();
+    for e in &response.epochs {
+        let _ = writeln!(
+            s,
+            "{},{:e},{:e},{:e},{:e},{},{},{:.6},{:.6e},{:.6e},{:.6}",
+            e.t,
+            e.irradiance_w_m2,
+            e.sun_w_m2,
+            e.earthshine_w_m2,
+            e.intensity_w_sr,
+            opt(e.magnitude),
+            opt(e.magnitude_std),
+            e.phase_angle_deg,
+            e.range_m,
+            e.lit_visible_area_m2,
+            e.eclipse
+        );
+    }
+    s
+}

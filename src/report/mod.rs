@@ -1,0 +1,4 @@
+//! Writing results: CSV and a magnitude plot.
+
+pub mod csv;
+pub mod plot;

@@ -1,0 +1,121 @@
+//! Requests and responses (the wire format, with OpenAPI schemas), their validation
+//! into a checked [`Scene`], and the material presets.
+
+pub mod presets;
+pub mod request;
+pub mod response;
+pub mod validate;
+
+pub use request::Request;
+pub use response::{EpochResult, Response, Summary};
+pub use validate::{Limits, ValidationError};
+
+use crate::brdf::Brdf;
+use crate::geometry::Mesh;
+use glam::DVec3;
+
+/// A material after validation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    pub name: String,
+    pub brdf: Brdf,
+    /// Lit and seen from both sides (thin sheets).
+    pub two_sided: bool,
+}
+
+/// One epoch's geometry in the body frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Epoch {
+    /// Seconds (Unix seconds for ISO input).
+    pub t: f64,
+    /// Unit vector object → Sun.
+    pub sun: DVec3,
+    /// Object–Sun distance, m.
+    pub sun_distance_m: f64,
+    /// Vector object → observer, m.
+    pub observer: DVec3,
+    /// Vector object → Earth centre, m.
+    pub earth: Option<DVec3>,
+}
+
+/// Earthshine model (PHYSICS.md §2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EarthshineModel {
+    Off,
+    /// The paper's Eq. 3: ρE_s as a parallel beam from the Earth's direction.
+    Seed,
+    /// The Earth as a sunlit Lambertian sphere, integrated over its visible cap.
+    Sphere,
+}
+
+/// Illumination settings after validation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Illumination {
+    /// Band [λ1, λ2], µm.
+    pub band_um: [f64; 2],
+    /// Sun blackbody temperature, K.
+    pub sun_temperature_k: f64,
+    pub earthshine: EarthshineModel,
+    /// Earth's albedo ρ.
+    pub earth_albedo: f64,
+}
+
+impl Default for Illumination {
+    fn default() -> Self {
+        Illumination {
+            band_um: [0.4, 0.7],
+            sun_temperature_k: 5900.0,
+            earthshine: EarthshineModel::Seed,
+            earth_albedo: 0.35,
+        }
+    }
+}
+
+/// How visibility (shadowing and occlusion by the mesh itself) is integrated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Convex meshes: no rays; otherwise `Adaptive`.
+    Auto,
+    /// Per-face classification, partial faces refined to the tolerance.
+    Adaptive,
+    /// One ray per direction at each triangle's centroid: all lit or all dark.
+    Centroid,
+    /// Back-face culling only (exact for convex meshes, wrong otherwise).
+    Convex,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Auto => "auto",
+            Method::Adaptive => "adaptive",
+            Method::Centroid => "centroid",
+            Method::Convex => "convex",
+        }
+    }
+}
+
+/// A checked request: everything the engine needs, in SI units and the body frame.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    pub mesh: Mesh,
+    pub materials: Vec<Material>,
+    pub epochs: Vec<Epoch>,
+    pub illumination: Illumination,
+    /// Relative tolerance of the visibility integration.
+    pub tolerance: f64,
+    pub method: Method,
+}
+
+impl Scene {
+    /// Parses and validates request JSON text. The error names the offending field.
+    pub fn from_json(text: &str, limits: &Limits) -> Result<Scene, ValidationError> {
+        let request = validate::parse_request(text)?;
+        Scene::from_request(&request, limits)
+    }
+
+    /// Validates a parsed request.
+    pub fn from_request(request: &Request, limits: &Limits) -> Result<Scene, ValidationError> {
+        validate::validate(request, limits)
+    }
+}

@@ -1,0 +1,174 @@
+//! The request JSON, exactly as clients send it (CLI file or HTTP body).
+//!
+//! These types only describe the wire format; [`super::validate`] turns a
+//! [`Request`] into a checked [`super::Scene`]. Every struct rejects unknown
+//! fields so a typo is an error that names the field, not a silent default.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// A light-curve request: one object, its epochs, and how it is lit.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Request {
+    /// The object: its mesh and materials.
+    pub object: ObjectSpec,
+    /// The epochs to compute, in any order; results come back in the same order.
+    pub epochs: Vec<EpochSpec>,
+    /// Band, Sun temperature and earthshine. Optional; defaults as documented per field.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub illumination: Option<IlluminationSpec>,
+    /// Relative tolerance of the lit-and-visible area integration for partly shadowed
+    /// faces (fraction of the epoch's unshadowed signal). Default 1e-3.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 1e-3)]
+    pub tolerance: Option<f64>,
+    /// Integration method: `auto` (default), `adaptive`, `centroid` or `convex`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub method: Option<String>,
+}
+
+/// The object: a triangle mesh and the materials its triangles use.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectSpec {
+    pub mesh: MeshSpec,
+    /// Materials, indexed by `mesh.material_ids` (inline meshes) or matched by name
+    /// (`usemtl` in OBJ text and built-in objects). A bare string names a preset.
+    pub materials: Vec<MaterialSpec>,
+}
+
+/// A mesh: inline `vertices` + `triangles`, or `obj` text, or a `builtin` name.
+/// Exactly one of the three forms must be given.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Vertex positions in metres, body frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vertices: Option<Vec<[f64; 3]>>,
+    /// Vertex indices per triangle, counter-clockwise seen from outside.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub triangles: Option<Vec<[u32; 3]>>,
+    /// Index into `object.materials` per triangle; when absent all use `materials[0]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material_ids: Option<Vec<u32>>,
+    /// Wavefront OBJ text (metres); faces take the material named by `usemtl`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obj: Option<String>,
+    /// Name of an object shipped with glint (see `GET /v1/scenes`), e.g. `box-wing`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub builtin: Option<String>,
+}
+
+/// A material: a preset name, or an object with `name` and either `model` + parameters
+/// or `preset`.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(untagged)]
+pub enum MaterialSpec {
+    /// A preset by name: `seed-body-wrap` or `seed-white-paint` (the paper's §5.1).
+    Preset(String),
+    Full(MaterialObject),
+}
+
+/// A material with its model parameters. Which parameters are allowed depends on `model`:
+/// - `seed-microfacet`: `kd`, `km`, `slope_rms`, `n`, `k` (the paper's Eqs. 6–8)
+/// - `lambert`: `albedo`
+/// - `rough-conductor`: `alpha`, `n`, `k`, optional `kd` (Beckmann + Smith, as pbrt/Mitsuba)
+/// - `ashikhmin-shirley`: `rd`, `rs`, `nu`, `nv`
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialObject {
+    /// Name used by `usemtl` and built-in objects.
+    pub name: String,
+    /// `seed-microfacet`, `lambert`, `rough-conductor` or `ashikhmin-shirley`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<String>,
+    /// Use a preset's model and parameters under this material's name.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub preset: Option<String>,
+    /// Diffuse coefficient k^D (dimensionless, 0..1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kd: Option<f64>,
+    /// Specular coefficient k^M (dimensionless, >= 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub km: Option<f64>,
+    /// RMS microfacet slope δ (dimensionless, > 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slope_rms: Option<f64>,
+    /// Real part of the complex refractive index.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n: Option<f64>,
+    /// Imaginary part (extinction coefficient) of the refractive index.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub k: Option<f64>,
+    /// Lambertian albedo (0..1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub albedo: Option<f64>,
+    /// Beckmann roughness α of `rough-conductor` (> 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub alpha: Option<f64>,
+    /// Ashikhmin–Shirley diffuse reflectance R_d (0..1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rd: Option<f64>,
+    /// Ashikhmin–Shirley specular reflectance at normal incidence R_s (0..1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rs: Option<f64>,
+    /// Ashikhmin–Shirley Phong exponent along the face tangent (> 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu: Option<f64>,
+    /// Ashikhmin–Shirley Phong exponent along the face bitangent (> 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nv: Option<f64>,
+    /// Thin sheet lit and seen from both sides (solar panels). Default false.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub two_sided: Option<bool>,
+}
+
+/// Time of an epoch: seconds (any origin), or an ISO 8601 / RFC 3339 UTC string.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(untagged)]
+pub enum TimeSpec {
+    Seconds(f64),
+    Iso(String),
+}
+
+/// One epoch's geometry, in the body frame (or inertial when `attitude` is given).
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EpochSpec {
+    /// Seconds, or an ISO 8601 UTC time string (reported as Unix seconds).
+    #[schema(value_type = f64, example = 0.0)]
+    pub t: TimeSpec,
+    /// Direction from the object to the Sun (any length; normalised).
+    pub sun: [f64; 3],
+    /// Vector from the object to the observer, metres; its length is the range R.
+    pub observer: [f64; 3],
+    /// Vector from the object to the Earth's centre, metres. Needed for earthshine and eclipses.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub earth: Option<[f64; 3]>,
+    /// Object–Sun distance in AU. Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sun_distance_au: Option<f64>,
+    /// Body-to-inertial attitude quaternion [w, x, y, z]; when given, `sun`, `observer`
+    /// and `earth` are inertial and are rotated into the body frame.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub attitude: Option<[f64; 4]>,
+}
+
+/// Illumination: spectral band, Sun temperature, earthshine.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct IlluminationSpec {
+    /// Spectral band [λ1, λ2] in µm. Default [0.4, 0.7].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub band_um: Option<[f64; 2]>,
+    /// Sun blackbody temperature in K. Default 5900 (the paper's value).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sun_temperature_k: Option<f64>,
+    /// `off`, `seed` (the paper's Eq. 3, default) or `sphere` (sunlit Lambertian Earth).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub earthshine: Option<String>,
+    /// Earth's Bond albedo ρ. Default 0.35.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub earth_albedo: Option<f64>,
+}

@@ -1,0 +1,56 @@
+//! The response JSON: one result per epoch and a summary.
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// The light curve and how it was computed.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+pub struct Response {
+    pub epochs: Vec<EpochResult>,
+    pub summary: Summary,
+}
+
+/// Brightness of the object at one epoch.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema, PartialEq)]
+pub struct EpochResult {
+    /// Epoch time, seconds (Unix seconds when the request gave an ISO string).
+    pub t: f64,
+    /// Total irradiance at the observer, W/m² (band-integrated).
+    pub irradiance_w_m2: f64,
+    /// Part of the irradiance due to direct sunlight, W/m².
+    pub sun_w_m2: f64,
+    /// Part of the irradiance due to earthshine, W/m².
+    pub earthshine_w_m2: f64,
+    /// Radiant intensity of the object towards the observer, W/sr.
+    pub intensity_w_sr: f64,
+    /// Apparent magnitude, band-consistent (−26.74 for the Sun's band irradiance at 1 AU);
+    /// `null` when no light at all reaches the observer.
+    pub magnitude: Option<f64>,
+    /// Magnitude at a standard range of 1000 km; `null` with `magnitude`.
+    pub magnitude_std: Option<f64>,
+    /// Sun–object–observer angle, degrees.
+    pub phase_angle_deg: f64,
+    /// Object–observer distance, m.
+    pub range_m: f64,
+    /// Area both sunlit and seen by the observer, m².
+    pub lit_visible_area_m2: f64,
+    /// Fraction of the solar disk hidden by the Earth (0 sunlit, 1 umbra).
+    pub eclipse: f64,
+}
+
+/// How the light curve was computed.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+pub struct Summary {
+    pub epochs: usize,
+    pub triangles: usize,
+    /// Planar faces after merging coplanar connected triangles of one material.
+    pub faces: usize,
+    /// Shadow and occlusion rays cast over all epochs.
+    pub rays: u64,
+    /// Wall-clock time of the computation, ms.
+    pub elapsed_ms: f64,
+    /// The method used and why it was chosen.
+    pub method: String,
+    /// Whether the mesh was detected as convex (no rays needed).
+    pub convex: bool,
+}

@@ -1,0 +1,520 @@
+//! Request → Scene: every input checked at the boundary, every error naming its field.
+
+use super::request::{EpochSpec, MaterialObject, MaterialSpec, MeshSpec, Request, TimeSpec};
+use super::{presets, EarthshineModel, Epoch, Illumination, Material, Method, Scene};
+use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet};
+use crate::geometry::{builtin, obj, Mesh};
+use crate::radiometry::{AU_M, EARTH_RADIUS_M};
+use glam::{DQuat, DVec3};
+use std::fmt;
+
+/// A bad request: which field, and what is wrong with it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ValidationError {
+    /// Path of the field, e.g. `object.materials[1].albedo` (empty for the whole body).
+    pub field: String,
+    pub message: String,
+}
+
+impl ValidationError {
+    pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
+        ValidationError {
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+    /// Whether the error is a size limit (HTTP 413) rather than a bad value (422/400).
+    pub fn is_limit(&self) -> bool {
+        self.message.starts_with("too many") || self.message.starts_with("too large")
+    }
+}
+
+impl fmt::Display for ValidationError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.is_empty() {
+            write!(f, "{}", self.message)
+        } else {
+            write!(f, "{}: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for ValidationError {}
+
+/// Size bounds on a request. The CLI uses [`Limits::unlimited`]; the service sets its own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Limits {
+    pub max_triangles: usize,
+    pub max_epochs: usize,
+}
+
+impl Limits {
+    pub const fn unlimited() -> Limits {
+        Limits {
+            max_triangles: usize::MAX,
+            max_epochs: usize::MAX,
+        }
+    }
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits::unlimited()
+    }
+}
+
+/// Parses request JSON, turning serde's errors into field-naming ones.
+pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let mut field = e.path().to_string();
+        if field == "." {
+            field.clear();
+        }
+        let inner = e.into_inner();
+        let message = inner.to_string();
+        // serde reports an unknown field at its parent's path: name the field itself.
+        if let Some(rest) = message.strip_prefix("unknown field `") {
+            if let Some(name) = rest.split('`').next() {
+                field = if field.is_empty() {
+                    name.to_string()
+                } else {
+                    format!("{field}.{name}")
+                };
+            }
+        }
+        // Strip serde's "at line L column C" suffix from the field-level message but
+        // keep it for syntax errors, where there is no field to name.
+        let message = if inner.is_syntax() || inner.is_eof() {
+            format!("invalid JSON: {message}")
+        } else {
+            match message.rfind(" at line ") {
+                Some(i) => message[..i].to_string(),
+                None => message,
+            }
+        };
+        ValidationError { field, message }
+    })
+}
+
+fn err<T>(field: impl Into<String>, message: impl Into<String>) -> Result<T, ValidationError> {
+    Err(ValidationError::new(field, message))
+}
+
+fn finite(field: &str, v: f64) -> Result<f64, ValidationError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        err(field, "must be a finite number")
+    }
+}
+
+fn vector(field: &str, v: [f64; 3]) -> Result<DVec3, ValidationError> {
+    let d = DVec3::from_array(v);
+    if !d.is_finite() {
+        return err(field, "must have three finite components");
+    }
+    if d.length_squared() == 0.0 || !d.length_squared().is_normal() {
+        return err(field, "must not be the zero vector");
+    }
+    Ok(d)
+}
+
+fn in_range(field: &str, v: f64, lo: f64, hi: f64) -> Result<f64, ValidationError> {
+    finite(field, v)?;
+    if v < lo || v > hi {
+        return err(field, format!("must be between {lo} and {hi}, got {v}"));
+    }
+    Ok(v)
+}
+
+fn positive(field: &str, v: f64) -> Result<f64, ValidationError> {
+    finite(field, v)?;
+    if v <= 0.0 {
+        return err(field, format!("must be positive, got {v}"));
+    }
+    Ok(v)
+}
+
+/// Checks a whole request.
+pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError> {
+    if req.object.materials.is_empty() {
+        return err("object.materials", "must list at least one material");
+    }
+    let materials = req
+        .object
+        .materials
+        .iter()
+        .enumerate()
+        .map(|(i, m)| material(&format!("object.materials[{i}]"), m))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (i, m) in materials.iter().enumerate() {
+        if materials[..i].iter().any(|o| o.name == m.name) {
+            return err(format!("object.materials[{i}].name"), format!("duplicate material name `{}`", m.name));
+        }
+    }
+    let mesh = mesh(&req.object.mesh, &materials, limits)?;
+
+    let illumination = illumination(req)?;
+    if req.epochs.is_empty() {
+        return err("epochs", "must list at least one epoch");
+    }
+    if req.epochs.len() > limits.max_epochs {
+        return err(
+            "epochs",
+            format!("too many epochs: {} (limit {})", req.epochs.len(), limits.max_epochs),
+        );
+    }
+    let earthshine_explicit = req
+        .illumination
+        .as_ref()
+        .and_then(|i| i.earthshine.as_ref())
+        .is_some();
+    let epochs = req
+        .epochs
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            let ep = epoch(&format!("epochs[{i}]"), e)?;
+            if ep.earth.is_none() && earthshine_explicit && illumination.earthshine != EarthshineModel::Off {
+                return err(
+                    format!("epochs[{i}].earth"),
+                    "is required when illumination.earthshine is not \"off\"",
+                );
+            }
+            Ok(ep)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let tolerance = match req.tolerance {
+        None => 1e-3,
+        Some(t) => {
+            finite("tolerance", t)?;
+            if !(1e-9..=0.5).contains(&t) {
+                return err("tolerance", format!("must be between 1e-9 and 0.5, got {t}"));
+            }
+            t
+        }
+    };
+    let method = match req.method.as_deref() {
+        None | Some("auto") => Method::Auto,
+        Some("adaptive") => Method::Adaptive,
+        Some("centroid") => Method::Centroid,
+        Some("convex") => Method::Convex,
+        Some(other) => {
+            return err(
+                "method",
+                format!("unknown method `{other}`; expected auto, adaptive, centroid or convex"),
+            )
+        }
+    };
+    Ok(Scene {
+        mesh,
+        materials,
+        epochs,
+        illumination,
+        tolerance,
+        method,
+    })
+}
+
+fn illumination(req: &Request) -> Result<Illumination, ValidationError> {
+    let mut out = Illumination::default();
+    let Some(spec) = &req.illumination else {
+        return Ok(out);
+    };
+    if let Some([a, b]) = spec.band_um {
+        finite("illumination.band_um[0]", a)?;
+        finite("illumination.band_um[1]", b)?;
+        if a < 0.0 || b <= a {
+            return err("illumination.band_um", format!("must be [λ1, λ2] in µm with 0 <= λ1 < λ2, got [{a}, {b}]"));
+        }
+        out.band_um = [a, b];
+    }
+    if let Some(t) = spec.sun_temperature_k {
+        out.sun_temperature_k = in_range("illumination.sun_temperature_k", t, 100.0, 100_000.0)?;
+    }
+    if let Some(e) = &spec.earthshine {
+        out.earthshine = match e.as_str() {
+            "off" => EarthshineModel::Off,
+            "seed" => EarthshineModel::Seed,
+            "sphere" => EarthshineModel::Sphere,
+            other => {
+                return err(
+                    "illumination.earthshine",
+                    format!("unknown model `{other}`; expected off, seed or sphere"),
+                )
+            }
+        };
+    }
+    if let Some(a) = spec.earth_albedo {
+        out.earth_albedo = in_range("illumination.earth_albedo", a, 0.0, 1.0)?;
+    }
+    Ok(out)
+}
+
+fn epoch(field: &str, e: &EpochSpec) -> Result<Epoch, ValidationError> {
+    let t = match &e.t {
+        TimeSpec::Seconds(s) => finite(&format!("{field}.t"), *s)?,
+        TimeSpec::Iso(s) => parse_time(s).map_err(|m| ValidationError::new(format!("{field}.t"), m))?,
+    };
+    let mut sun = vector(&format!("{field}.sun"), e.sun)?.normalize();
+    let mut observer = vector(&format!("{field}.observer"), e.observer)?;
+    let mut earth = e
+        .earth
+        .map(|v| vector(&format!("{field}.earth"), v))
+        .transpose()?;
+    if let Some(q) = e.attitude {
+        let qf = format!("{field}.attitude");
+        let q = DQuat::from_xyzw(q[1], q[2], q[3], q[0]);
+        if !q.is_finite() || (q.length() - 1.0).abs() > 1e-6 {
+            return err(qf, "must be a unit quaternion [w, x, y, z]");
+        }
+        // attitude rotates body → inertial; the vectors are inertial
+        let inv = q.inverse();
+        sun = inv * sun;
+        observer = inv * observer;
+        earth = earth.map(|v| inv * v);
+    }
+    if let Some(d) = earth {
+        if d.length() <= EARTH_RADIUS_M {
+            return err(format!("{field}.earth"), format!("object is inside the Earth: |earth| = {:.0} m <= 6371 km", d.length()));
+        }
+    }
+    let au = match e.sun_distance_au {
+        None => 1.0,
+        Some(d) => in_range(&format!("{field}.sun_distance_au"), d, 0.01, 1000.0)?,
+    };
+    Ok(Epoch {
+        t,
+        sun,
+        sun_distance_m: au * AU_M,
+        observer,
+        earth,
+    })
+}
+
+/// ISO 8601 / RFC 3339 UTC time → Unix seconds. A missing zone is taken as UTC.
+fn parse_time(s: &str) -> Result<f64, String> {
+    use chrono::{DateTime, NaiveDateTime};
+    let to_secs = |dt: DateTime<chrono::Utc>| dt.timestamp() as f64 + dt.timestamp_subsec_nanos() as f64 * 1e-9;
+    if let Ok(dt) = DateTime::parse_from_rfc3339(s) {
+        return Ok(to_secs(dt.with_timezone(&chrono::Utc)));
+    }
+    for fmt in ["%Y-%m-%dT%H:%M:%S%.f", "%Y-%m-%d %H:%M:%S%.f", "%Y-%m-%dT%H:%M"] {
+        if let Ok(n) = NaiveDateTime::parse_from_str(s, fmt) {
+            return Ok(to_secs(n.and_utc()));
+        }
+    }
+    Err(format!("`{s}` is neither seconds nor an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)"))
+}
+
+fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationError> {
+    let preset = |name: &str, f: &str| {
+        presets::find(name).ok_or_else(|| {
+            ValidationError::new(f, format!("unknown preset `{name}`; presets: {}", presets::names()))
+        })
+    };
+    match spec {
+        MaterialSpec::Preset(name) => Ok(Material {
+            name: name.clone(),
+            brdf: (preset(name, field)?.brdf)(),
+            two_sided: false,
+        }),
+        MaterialSpec::Full(m) => {
+            if m.name.is_empty() {
+                return err(format!("{field}.name"), "must not be empty");
+            }
+            let two_sided = m.two_sided.unwrap_or(false);
+            match (&m.preset, &m.model) {
+                (Some(_), Some(_)) => err(format!("{field}.model"), "give either `model` or `preset`, not both"),
+                (Some(p), None) => {
+                    let brdf = (preset(p, &format!("{field}.preset"))?.brdf)();
+                    only(field, m, &[])?;
+                    Ok(Material { name: m.name.clone(), brdf, two_sided })
+                }
+                (None, None) => err(format!("{field}.model"), "is required (or give `preset`)"),
+                (None, Some(model)) => Ok(Material {
+                    name: m.name.clone(),
+                    brdf: model_brdf(field, model, m)?,
+                    two_sided,
+                }),
+            }
+        }
+    }
+}
+
+/// Rejects parameters that the model does not use, naming the first one.
+fn only(field: &str, m: &MaterialObject, allowed: &[&str]) -> Result<(), ValidationError> {
+    let given = [
+        ("kd", m.kd), ("km", m.km), ("slope_rms", m.slope_rms), ("n", m.n), ("k", m.k),
+        ("albedo", m.albedo), ("alpha", m.alpha), ("rd", m.rd), ("rs", m.rs), ("nu", m.nu), ("nv", m.nv),
+    ];
+    for (name, v) in given {
+        if v.is_some() && !allowed.contains(&name) {
+            let what = m.model.as_deref().map_or("a preset".to_string(), |s| format!("model `{s}`"));
+            return err(format!("{field}.{name}"), format!("is not a parameter of {what}"));
+        }
+    }
+    Ok(())
+}
+
+fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, ValidationError> {
+    let f = |p: &str| format!("{field}.{p}");
+    let req = |p: &str, v: Option<f64>| v.ok_or_else(|| ValidationError::new(f(p), format!("is required by model `{model}`")));
+    match model {
+        "lambert" => {
+            only(field, m, &["albedo"])?;
+            Ok(Brdf::Lambert(Lambert {
+                albedo: in_range(&f("albedo"), req("albedo", m.albedo)?, 0.0, 1.0)?,
+            }))
+        }
+        "seed-microfacet" => {
+            only(field, m, &["kd", "km", "slope_rms", "n", "k"])?;
+            let kd = in_range(&f("kd"), req("kd", m.kd)?, 0.0, 1.0)?;
+            let km = in_range(&f("km"), req("km", m.km)?, 0.0, 1e3)?;
+            let d = in_range(&f("slope_rms"), req("slope_rms", m.slope_rms)?, 1e-6, 10.0)?;
+            let n = positive(&f("n"), req("n", m.n)?)?;
+            let k = in_range(&f("k"), m.k.unwrap_or(0.0), 0.0, 1e3)?;
+            Ok(Brdf::SeedMicrofacet(SeedMicrofacet::new(kd, km, d, n, k)))
+        }
+        "rough-conductor" => {
+            only(field, m, &["alpha", "n", "k", "kd"])?;
+            let alpha = in_range(&f("alpha"), req("alpha", m.alpha)?, 1e-6, 10.0)?;
+            let n = positive(&f("n"), req("n", m.n)?)?;
+            let k = in_range(&f("k"), req("k", m.k)?, 0.0, 1e3)?;
+            let kd = in_range(&f("kd"), m.kd.unwrap_or(0.0), 0.0, 1.0)?;
+            Ok(Brdf::RoughConductor(RoughConductor::new(alpha, n, k, kd)))
+        }
+        "ashikhmin-shirley" => {
+            only(field, m, &["rd", "rs", "nu", "nv"])?;
+            let rd = in_range(&f("rd"), req("rd", m.rd)?, 0.0, 1.0)?;
+            let rs = in_range(&f("rs"), req("rs", m.rs)?, 0.0, 1.0)?;
+            let nu = in_range(&f("nu"), req("nu", m.nu)?, 0.0, 1e7)?;
+            let nv = in_range(&f("nv"), req("nv", m.nv)?, 0.0, 1e7)?;
+            Ok(Brdf::AshikhminShirley(AshikhminShirley::new(rd, rs, nu, nv)))
+        }
+        other => err(
+            f("model"),
+            format!("unknown model `{other}`; expected seed-microfacet, lambert, rough-conductor or ashikhmin-shirley"),
+        ),
+    }
+}
+
+fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh, ValidationError> {
+    let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+    let forms = [spec.vertices.is_some() || spec.triangles.is_some(), spec.obj.is_some(), spec.builtin.is_some()];
+    if forms.iter().filter(|&&b| b).count() != 1 {
+        return err(
+            "object.mesh",
+            "give exactly one of `vertices` + `triangles`, `obj` or `builtin`",
+        );
+    }
+    if spec.material_ids.is_some() && spec.triangles.is_none() {
+        return err("object.mesh.material_ids", "goes only with inline `triangles` (OBJ and built-in meshes use material names)");
+    }
+    let mut mesh = if let Some(name) = &spec.builtin {
+        let b = builtin::find(name).ok_or_else(|| {
+            let known: Vec<_> = builtin::BUILTINS.iter().map(|b| b.name).collect();
+            ValidationError::new("object.mesh.builtin", format!("unknown object `{name}`; built-in: {}", known.join(", ")))
+        })?;
+        let mut mesh = (b.build)();
+        // map the object's material names onto the request's materials
+        let mut map = Vec::new();
+        for n in b.material_names {
+            match names.iter().position(|m| m == n) {
+                Some(i) => map.push(i as u32),
+                None if mesh.material_ids.iter().all(|&id| b.material_names[id as usize] != *n) => map.push(0),
+                None => {
+                    return err(
+                        "object.materials",
+                        format!("built-in object `{name}` needs a material named `{n}` (it uses: {})", b.material_names.join(", ")),
+                    )
+                }
+            }
+        }
+        for id in &mut mesh.material_ids {
+            *id = map[*id as usize];
+        }
+        mesh
+    } else if let Some(text) = &spec.obj {
+        obj::parse(text, &names).map_err(|m| ValidationError::new("object.mesh.obj", m))?
+    } else {
+        let vertices = spec.vertices.as_ref().ok_or_else(|| ValidationError::new("object.mesh.vertices", "is required with `triangles`"))?;
+        let triangles = spec.triangles.as_ref().ok_or_else(|| ValidationError::new("object.mesh.triangles", "is required with `vertices`"))?;
+        let mut mesh = Mesh {
+            vertices: Vec::with_capacity(vertices.len()),
+            triangles: triangles.clone(),
+            material_ids: Vec::new(),
+        };
+        for (i, v) in vertices.iter().enumerate() {
+            let p = DVec3::from_array(*v);
+            if !p.is_finite() {
+                return err(format!("object.mesh.vertices[{i}]"), "must have three finite components");
+            }
+            mesh.vertices.push(p);
+        }
+        mesh.material_ids = match &spec.material_ids {
+            None => vec![0; triangles.len()],
+            Some(ids) => {
+                if ids.len() != triangles.len() {
+                    return err(
+                        "object.mesh.material_ids",
+                        format!("has {} entries but there are {} triangles", ids.len(), triangles.len()),
+                    );
+                }
+                for (i, &id) in ids.iter().enumerate() {
+                    if id as usize >= materials.len() {
+                        return err(
+                            format!("object.mesh.material_ids[{i}]"),
+                            format!("material index {id} out of range (there are {} materials)", materials.len()),
+                        );
+                    }
+                }
+                ids.clone()
+            }
+        };
+        mesh
+    };
+    if mesh.triangles.is_empty() {
+        return err("object.mesh.triangles", "the mesh has no triangles");
+    }
+    if mesh.triangles.len() > limits.max_triangles {
+        return err(
+            "object.mesh",
+            format!("too many triangles: {} (limit {})", mesh.triangles.len(), limits.max_triangles),
+        );
+    }
+    let nv = mesh.vertices.len();
+    for (i, t) in mesh.triangles.iter().enumerate() {
+        if let Some(&bad) = t.iter().find(|&&k| k as usize >= nv) {
+            return err(
+                format!("object.mesh.triangles[{i}]"),
+                format!("vertex index {bad} out of range (there are {nv} vertices)"),
+            );
+        }
+    }
+    // Degenerate triangles carry no area and no normal: drop them rather than fail, as
+    // exporters often leave a few; a mesh of nothing else is an error.
+    let (_, scale) = mesh.bounding_sphere();
+    let min_area2 = (1e-12 * scale * scale).powi(2);
+    let keep: Vec<bool> = (0..mesh.triangles.len())
+        .map(|i| mesh.area_vector(i).length_squared() > min_area2)
+        .collect();
+    if !keep.iter().any(|&k| k) {
+        return err("object.mesh.triangles", "every triangle has zero area");
+    }
+    if keep.iter().any(|&k| !k) {
+        let mut i = 0;
+        mesh.triangles.retain(|_| {
+            i += 1;
+            keep[i - 1]
+        });
+        let mut j = 0;
+        mesh.material_ids.retain(|_| {
+            j += 1;
+            keep[j - 1]
+        });
+    }
+    Ok(mesh)
+}

@@ -151,5 +151,6 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
             convex: prepared.convex,
         },
         epochs,
+        thumbnails: None,
     })
 }

@@ -8,6 +8,26 @@ use utoipa::ToSchema;
 pub struct Response {
     pub epochs: Vec<EpochResult>,
     pub summary: Summary,
+    /// Rendered images, when the request asked for `thumbnails`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thumbnails: Option<Vec<Thumbnail>>,
+}
+
+/// One rendered image of the object as the observer sees it.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema, PartialEq)]
+pub struct Thumbnail {
+    /// Index of the epoch in the request.
+    pub epoch: usize,
+    /// Epoch time, seconds.
+    pub t: f64,
+    /// Image width and height, pixels.
+    pub size: u32,
+    /// Scale of the image, metres per pixel (at the object).
+    pub metres_per_pixel: f64,
+    /// Radiance mapped to full white (8-bit 255), W/(m²·sr); one value for a whole sequence.
+    pub exposure_w_m2_sr: f64,
+    /// The 8-bit PNG, base64-encoded.
+    pub png_base64: String,
 }
 
 /// Brightness of the object at one epoch.

@@ -9,7 +9,7 @@ use super::visibility::Uncertain;
 use super::Prepared;
 use crate::brdf::Frame;
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
-use crate::scene::{EarthshineModel, Epoch, EpochResult};
+use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination};
 use glam::DVec3;
 
 /// Per-thread buffers reused across epochs.
@@ -29,6 +29,49 @@ struct LitFace {
     earth: f64,
 }
 
+/// The light arriving at the object at one epoch: the Sun (after any eclipse) and the
+/// earthshine beams. Shared by the light curve and the renderer, so both see one Sun.
+#[derive(Debug, Clone, Default)]
+pub struct EpochLight {
+    /// Direct solar band irradiance at the object after the eclipse, W/m².
+    pub sun_w_m2: f64,
+    /// Fraction of the solar disk hidden by the Earth (0..1).
+    pub eclipse: f64,
+    pub earthshine: earth::Earthshine,
+}
+
+impl EpochLight {
+    pub fn at(ill: &Illumination, epoch: &Epoch) -> EpochLight {
+        let l = epoch.sun;
+        let es_full = sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
+        let (hidden, earthshine) = match epoch.earth {
+            None => (0.0, earth::Earthshine::default()),
+            Some(e) => {
+                let d = e.length();
+                let e_dir = e / d;
+                let hidden = eclipse::hidden_fraction(
+                    sun::angular_radius(epoch.sun_distance_m),
+                    (EARTH_RADIUS_M / d).min(1.0).asin(),
+                    angle_between(l, e_dir),
+                );
+                // The Earth reflects the sunlight that reaches it, which no eclipse of the
+                // object changes.
+                let shine = match ill.earthshine {
+                    EarthshineModel::Off => earth::Earthshine::default(),
+                    EarthshineModel::Seed => earth::seed(e_dir, ill.earth_albedo, es_full),
+                    EarthshineModel::Sphere => earth::sphere(e, l, ill.earth_albedo, es_full),
+                };
+                (hidden, shine)
+            }
+        };
+        EpochLight {
+            sun_w_m2: es_full * (1.0 - hidden),
+            eclipse: hidden,
+            earthshine,
+        }
+    }
+}
+
 /// Evaluates one epoch; returns the result and the number of rays cast.
 pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochResult, u64) {
     let scene = p.scene;
@@ -37,28 +80,11 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     let v = epoch.observer / range;
     let l = epoch.sun;
 
-    let es_full = sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
-    let (hidden, earthshine) = match epoch.earth {
-        None => (0.0, earth::Earthshine::default()),
-        Some(e) => {
-            let d = e.length();
-            let e_dir = e / d;
-            let hidden = eclipse::hidden_fraction(
-                sun::angular_radius(epoch.sun_distance_m),
-                (EARTH_RADIUS_M / d).min(1.0).asin(),
-                angle_between(l, e_dir),
-            );
-            // The Earth reflects the sunlight that reaches it, which no eclipse of the
-            // object changes.
-            let shine = match ill.earthshine {
-                EarthshineModel::Off => earth::Earthshine::default(),
-                EarthshineModel::Seed => earth::seed(e_dir, ill.earth_albedo, es_full),
-                EarthshineModel::Sphere => earth::sphere(e, l, ill.earth_albedo, es_full),
-            };
-            (hidden, shine)
-        }
-    };
-    let es = es_full * (1.0 - hidden);
+    let EpochLight {
+        sun_w_m2: es,
+        eclipse: hidden,
+        earthshine,
+    } = EpochLight::at(ill, epoch);
 
     // Pass 1: which faces send light to the observer, and how much if fully visible.
     scratch.lit.clear();

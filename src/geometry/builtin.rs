@@ -173,6 +173,13 @@ pub fn push_quad(mesh: &mut Mesh, p: [DVec3; 4], m: u32) {
 
 /// The box-wing satellite: the usual test object of this field.
 pub fn box_wing() -> Mesh {
+    box_wing_with(5, 24, 0)
+}
+
+/// The box-wing with its dish tessellated into `rings` × `sectors` (curved: one face per
+/// triangle) and its flat parts subdivided `flat_levels` times (they still merge into the
+/// same faces). Benchmarks use this for the ~15k-triangle object of the performance targets.
+pub fn box_wing_with(rings: u32, sectors: u32, flat_levels: u32) -> Mesh {
     let mut mesh = Mesh::default();
     // bus: 2 m cube
     push_box(&mut mesh, DVec3::splat(-1.0), DVec3::splat(1.0), 0);
@@ -197,8 +204,8 @@ pub fn box_wing() -> Mesh {
     }
     // dish: paraboloid z = z0 + r²/(4f), rim radius 0.8 m, opening +z, on a mast
     push_box(&mut mesh, DVec3::new(-0.05, -0.05, 1.0), DVec3::new(0.05, 0.05, 1.2), 0);
+    let mut mesh = subdivide(&mesh, flat_levels);
     let (z0, f, rim) = (1.2, 0.8, 0.8);
-    let (rings, sectors) = (5u32, 24u32);
     let base = mesh.vertices.len() as u32;
     mesh.vertices.push(DVec3::new(0.0, 0.0, z0));
     for i in 1..=rings {
@@ -223,4 +230,33 @@ pub fn box_wing() -> Mesh {
         }
     }
     mesh
+}
+
+/// Splits every triangle into four, `levels` times (4^levels as many triangles, same
+/// surface). Flat faces stay flat, so they still merge into the same faces.
+pub fn subdivide(mesh: &Mesh, levels: u32) -> Mesh {
+    let mut out = mesh.clone();
+    for _ in 0..levels {
+        let mut next = Mesh {
+            vertices: out.vertices.clone(),
+            triangles: Vec::with_capacity(out.triangles.len() * 4),
+            material_ids: Vec::with_capacity(out.triangles.len() * 4),
+        };
+        let mut midpoint = std::collections::HashMap::new();
+        let mut mid = |a: u32, b: u32, v: &mut Vec<DVec3>| -> u32 {
+            *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                v.push(0.5 * (v[a as usize] + v[b as usize]));
+                v.len() as u32 - 1
+            })
+        };
+        for (&[a, b, c], &m) in out.triangles.iter().zip(&out.material_ids) {
+            let ab = mid(a, b, &mut next.vertices);
+            let bc = mid(b, c, &mut next.vertices);
+            let ca = mid(c, a, &mut next.vertices);
+            next.triangles.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+            next.material_ids.extend([m; 4]);
+        }
+        out = next;
+    }
+    out
 }

@@ -7,6 +7,7 @@ pub mod fresnel;
 pub mod lambert;
 pub mod rough_conductor;
 pub mod seed_microfacet;
+pub mod sun_disk;
 
 pub use ashikhmin_shirley::AshikhminShirley;
 pub use lambert::Lambert;
@@ -90,6 +91,48 @@ impl Brdf {
                 specular: !diffuse && m.specular,
                 ..*m
             }),
+        }
+    }
+}
+
+impl Brdf {
+    /// RMS slope of the narrowest specular lobe, in the Beckmann convention
+    /// exp(−tan²α/δ²) of the half vector (dimensionless); `None` without a specular lobe.
+    /// Ashikhmin–Shirley's cosⁿ ≈ exp(−nα²/2) gives δ = √(2/n).
+    pub fn lobe_slope(&self) -> Option<f64> {
+        match self {
+            Brdf::Lambert(_) => None,
+            Brdf::SeedMicrofacet(m) => (m.km > 0.0).then_some(m.slope_rms),
+            Brdf::RoughConductor(m) => (m.ks > 0.0).then_some(m.alpha),
+            Brdf::AshikhminShirley(m) => {
+                (m.specular && m.rs > 0.0).then(|| (2.0 / m.nu.max(m.nv).max(1e-300)).sqrt())
+            }
+        }
+    }
+
+    /// A copy whose specular lobe is at least `slope` wide: a narrower lobe convolved with
+    /// a Gaussian of slope √(slope² − δ²) (slopes add in quadrature), which keeps its
+    /// normalisation. Used to blur the lobe over the Sun's disk ([`sun_disk`]).
+    pub fn widened(&self, slope: f64) -> Brdf {
+        let widen = |d: f64| d.max(slope);
+        match self {
+            Brdf::Lambert(m) => Brdf::Lambert(*m),
+            Brdf::SeedMicrofacet(m) => Brdf::SeedMicrofacet(SeedMicrofacet {
+                slope_rms: widen(m.slope_rms),
+                ..*m
+            }),
+            Brdf::RoughConductor(m) => Brdf::RoughConductor(RoughConductor {
+                alpha: widen(m.alpha),
+                ..*m
+            }),
+            Brdf::AshikhminShirley(m) => {
+                let exponent = |n: f64| 2.0 / widen((2.0 / n.max(1e-300)).sqrt()).powi(2);
+                Brdf::AshikhminShirley(AshikhminShirley {
+                    nu: exponent(m.nu),
+                    nv: exponent(m.nv),
+                    ..*m
+                })
+            }
         }
     }
 }

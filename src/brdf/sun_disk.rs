@@ -78,7 +78,7 @@ pub fn projected_with(
     let Some(slope) = brdf.lobe_slope() else {
         return point();
     };
-    if !(sun_radius > 0.0) || slope > WIDE_LOBE * sun_radius {
+    if sun_radius.is_nan() || sun_radius <= 0.0 || slope > WIDE_LOBE * sun_radius {
         return point();
     }
     let blob = slope.max(blob * sun_radius);

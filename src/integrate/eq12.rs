@@ -7,7 +7,7 @@
 
 use super::visibility::Uncertain;
 use super::Prepared;
-use crate::brdf::Frame;
+use crate::brdf::{sun_disk, Frame};
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
 use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination};
 use glam::DVec3;
@@ -85,6 +85,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         eclipse: hidden,
         earthshine,
     } = EpochLight::at(ill, epoch);
+    let sun_radius = sun::angular_radius(epoch.sun_distance_m);
 
     // Pass 1: which faces send light to the observer, and how much if fully visible.
     scratch.lit.clear();
@@ -104,7 +105,8 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             t: face.tangent,
         };
         let sun_term = if es > 0.0 {
-            es * material.brdf.projected(&frame, l, v)
+            // the Sun as a disk: a narrow lobe's glint is the disk's reflection, not a spike
+            es * sun_disk::projected(&material.brdf, &frame, l, v, sun_radius)
         } else {
             0.0
         };

@@ -1,5 +1,6 @@
 //! The command line: argument parsing and the subcommands. No physics here.
 
+pub mod serve;
 pub mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -23,6 +24,15 @@ pub enum Command {
         #[arg(long, default_value = "scenes/objects")]
         dir: PathBuf,
     },
+    /// Run the HTTP service (also what `glint` with no arguments does).
+    Serve(serve::ServeArgs),
+    /// Print the service's OpenAPI document (committed as openapi/openapi.json).
+    Openapi,
+    /// Exit 0 when the service at --addr answers GET /healthz with 200 (container HEALTHCHECK).
+    Healthcheck {
+        #[arg(long, env = "GLINT_ADDR", default_value = "127.0.0.1:8080")]
+        addr: std::net::SocketAddr,
+    },
 }
 
 #[derive(Debug, clap::Args)]
@@ -45,7 +55,10 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::Simulate(args)) => simulate::run(&args),
         Some(Command::ExportObjects { dir }) => export_objects(&dir),
-        None => anyhow::bail!("no command given; try `glint simulate scenes/box-wing.json` or `glint --help`"),
+        Some(Command::Serve(args)) => serve::run(&args),
+        Some(Command::Openapi) => serve::print_openapi(),
+        Some(Command::Healthcheck { addr }) => serve::healthcheck(addr),
+        None => serve::run_default(),
     }
 }
 

@@ -1,1 +1,224 @@
-//! The HTTP service (routes, jobs, storage) — see the service issue.
+//! The HTTP service: light curves over REST, batch jobs that survive restarts, OpenAPI.
+//!
+//! ```text
+//! metrics ─▶ JSON errors ─▶ timeout ─▶ auth ─▶ body limit ─▶ routes
+//!                                                  ├─ /v1/lightcurves: validate → slot → engine (blocking pool)
+//!                                                  ├─ /v1/jobs…: jobs (durable queue, redb store)
+//!                                                  └─ /v1/scenes, /healthz, /readyz, /metrics, /docs
+//! ```
+//! No physics here: the engine ([`crate::simulate_with`]) and its validation
+//! ([`crate::scene::validate`]) are the single source of truth.
+
+pub mod errors;
+pub mod jobs;
+pub mod limits;
+pub mod metrics;
+pub mod openapi;
+pub mod routes;
+pub mod scenes;
+pub mod store;
+
+use axum::extract::{DefaultBodyLimit, Request, State};
+use axum::http::{header, HeaderValue, StatusCode};
+use axum::middleware::{from_fn, from_fn_with_state, Next};
+use axum::response::{IntoResponse, Response};
+use axum::Router;
+use errors::ApiError;
+use jobs::Jobs;
+use limits::{ServiceLimits, Slots};
+use metrics::Metrics;
+use std::net::SocketAddr;
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::Duration;
+use store::Store;
+use tower_http::timeout::TimeoutLayer;
+use utoipa::OpenApi;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+use utoipa_swagger_ui::SwaggerUi;
+
+/// Everything `glint serve` configures.
+#[derive(Debug, Clone)]
+pub struct Config {
+    /// Address to listen on (port 0 picks a free one).
+    pub addr: SocketAddr,
+    /// Directory of the job database.
+    pub data_dir: PathBuf,
+    /// Bearer token every route but `/healthz` and `/readyz` requires, when set.
+    pub token: Option<String>,
+    /// Allow listening on a non-loopback address without a token.
+    pub allow_unauthenticated: bool,
+    pub limits: ServiceLimits,
+    /// How long finished jobs and their results are kept.
+    pub result_ttl: Duration,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Config {
+            addr: SocketAddr::from(([127, 0, 0, 1], 8080)),
+            data_dir: PathBuf::from("glint-data"),
+            token: None,
+            allow_unauthenticated: false,
+            limits: ServiceLimits::default(),
+            result_ttl: Duration::from_secs(7 * 24 * 3600),
+        }
+    }
+}
+
+/// Shared by all handlers.
+#[derive(Clone)]
+pub struct AppState {
+    pub limits: Arc<ServiceLimits>,
+    pub slots: Arc<Slots>,
+    pub jobs: Arc<Jobs>,
+    pub metrics: Arc<Metrics>,
+    pub store: Arc<Store>,
+}
+
+/// The documented routes, with their OpenAPI paths.
+pub fn api_router() -> OpenApiRouter<AppState> {
+    OpenApiRouter::with_openapi(openapi::ApiDoc::openapi())
+        .routes(routes!(routes::post_lightcurve))
+        .routes(routes!(routes::post_job, routes::list_jobs))
+        .routes(routes!(routes::get_job, routes::delete_job))
+        .routes(routes!(routes::get_job_result))
+        .routes(routes!(routes::get_thumbnail))
+        .routes(routes!(routes::list_scenes))
+        .routes(routes!(routes::get_scene))
+        .routes(routes!(routes::healthz))
+        .routes(routes!(routes::readyz))
+        .routes(routes!(routes::metrics))
+}
+
+/// Requires `Authorization: Bearer <token>` on everything but the health checks.
+async fn auth(State(token): State<Option<Arc<str>>>, req: Request, next: Next) -> Response {
+    let Some(token) = token else {
+        return next.run(req).await;
+    };
+    let path = req.uri().path();
+    if path == "/healthz" || path == "/readyz" {
+        return next.run(req).await;
+    }
+    let given = req
+        .headers()
+        .get(header::AUTHORIZATION)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.strip_prefix("Bearer "))
+        .map(str::trim);
+    match given {
+        Some(g) if constant_time_eq(g.as_bytes(), token.as_bytes()) => next.run(req).await,
+        _ => {
+            let msg = if given.is_some() {
+                "wrong bearer token"
+            } else {
+                "this service needs `Authorization: Bearer <token>`"
+            };
+            let mut r = ApiError::new(StatusCode::UNAUTHORIZED, msg)
+                .with_field("Authorization")
+                .into_response();
+            r.headers_mut()
+                .insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
+            r
+        }
+    }
+}
+
+/// Equality that takes the same time wherever the first difference is.
+fn constant_time_eq(a: &[u8], b: &[u8]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
+}
+
+/// Opens the store, restarts unfinished jobs and builds the router. Runs inside the tokio
+/// runtime (the job manager spawns its tasks).
+pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
+    let store = Arc::new(Store::open(&config.data_dir)?);
+    let limits = config.limits.clone();
+    let slots = Arc::new(Slots::new(limits.max_concurrent, limits.max_queued));
+    let metrics = Arc::new(Metrics::default());
+    let jobs = Jobs::start(
+        store.clone(),
+        slots.clone(),
+        metrics.clone(),
+        limits.clone(),
+        config.result_ttl,
+    )?;
+    let state = AppState {
+        limits: Arc::new(limits.clone()),
+        slots,
+        jobs,
+        metrics: metrics.clone(),
+        store,
+    };
+    let (router, spec) = api_router().split_for_parts();
+    let token: Option<Arc<str>> = config
+        .token
+        .as_deref()
+        .filter(|t| !t.is_empty())
+        .map(Arc::from);
+    let router = router
+        .merge(SwaggerUi::new("/docs").url("/openapi.json", spec))
+        .fallback(routes::not_found)
+        .with_state(state.clone())
+        .layer(DefaultBodyLimit::max(limits.max_body_bytes))
+        .layer(from_fn_with_state(token, auth))
+        // A backstop for slow uploads; the light-curve handler has its own, shorter
+        // deadline so its 503 names the cause.
+        .layer(TimeoutLayer::with_status_code(
+            StatusCode::REQUEST_TIMEOUT,
+            limits.request_timeout + Duration::from_secs(5),
+        ))
+        .layer(from_fn(errors::json_errors))
+        .layer(from_fn_with_state(metrics, metrics::track));
+    Ok((router, state))
+}
+
+/// A started service.
+pub struct Running {
+    /// The address it listens on.
+    pub addr: SocketAddr,
+    pub state: AppState,
+    stop: tokio::sync::oneshot::Sender<()>,
+    task: tokio::task::JoinHandle<std::io::Result<()>>,
+}
+
+impl Running {
+    /// Graceful shutdown: stop accepting, let in-flight requests finish, then stop running
+    /// jobs at their next epoch (they stay queued on disk and run again on restart).
+    pub async fn shutdown(self) -> anyhow::Result<()> {
+        let _ = self.stop.send(());
+        self.task.await??;
+        self.state.jobs.shutdown(Duration::from_secs(10)).await;
+        Ok(())
+    }
+}
+
+/// Binds, builds and starts serving in a background task.
+pub async fn start(config: Config) -> anyhow::Result<Running> {
+    let has_token = config.token.as_deref().is_some_and(|t| !t.is_empty());
+    if !has_token && !config.addr.ip().is_loopback() && !config.allow_unauthenticated {
+        anyhow::bail!(
+            "refusing to listen on {} without authentication: set GLINT_API_TOKEN (or \
+             --allow-unauthenticated / GLINT_ALLOW_UNAUTHENTICATED=true to accept anyone)",
+            config.addr
+        );
+    }
+    let listener = tokio::net::TcpListener::bind(config.addr).await?;
+    let addr = listener.local_addr()?;
+    let (router, state) = build(&config)?;
+    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+    let task = tokio::spawn(async move {
+        axum::serve(listener, router)
+            .with_graceful_shutdown(async move {
+                let _ = stopped.await;
+            })
+            .await
+    });
+    Ok(Running {
+        addr,
+        state,
+        stop,
+        task,
+    })
+}

@@ -1,0 +1,561 @@
+//! Batch jobs: accepted to disk, run one computation slot at a time, cancellable, and
+//! picked up again after a restart.
+//!
+//! ```text
+//! POST ─validate─▶ store.insert (committed) ─▶ 202 ─▶ queue ─▶ dispatcher ─▶ running
+//!                                                      ▲                     │ simulate_with
+//! restart: records still queued/running ───────────────┘   done / failed / cancelled ─▶ store
+//! ```
+//! The in-memory table is the live view (progress counters); the store is the truth after
+//! a crash. Every store write takes the current in-memory record under one lock, so the
+//! last write always reflects the latest state, whatever order the tasks finish in.
+
+use super::errors::ApiError;
+use super::limits::{ServiceLimits, Slots};
+use super::metrics::Metrics;
+use super::store::{Store, StoreError};
+use crate::integrate::{simulate_with, Cancelled, Progress};
+use crate::scene::{validate, Scene};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::{Duration, SystemTime, UNIX_EPOCH};
+use tokio::sync::{mpsc, Notify, Semaphore};
+use utoipa::ToSchema;
+
+/// Where a job is in its life.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum JobState {
+    Queued,
+    Running,
+    Done,
+    Failed,
+    Cancelled,
+}
+
+impl JobState {
+    pub const ALL: [JobState; 5] = [
+        JobState::Queued,
+        JobState::Running,
+        JobState::Done,
+        JobState::Failed,
+        JobState::Cancelled,
+    ];
+
+    /// Done, failed or cancelled: the job will not run again.
+    pub fn is_final(self) -> bool {
+        matches!(
+            self,
+            JobState::Done | JobState::Failed | JobState::Cancelled
+        )
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            JobState::Queued => "queued",
+            JobState::Running => "running",
+            JobState::Done => "done",
+            JobState::Failed => "failed",
+            JobState::Cancelled => "cancelled",
+        }
+    }
+}
+
+/// A job as stored on disk (timestamps in Unix milliseconds).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct JobRecord {
+    pub id: String,
+    pub state: JobState,
+    pub epochs_total: usize,
+    pub epochs_done: usize,
+    pub created_ms: i64,
+    pub started_ms: Option<i64>,
+    pub finished_ms: Option<i64>,
+    pub error: Option<String>,
+    /// How many times the job was started (more than 1 after a restart mid-run).
+    pub attempts: u32,
+}
+
+/// A job's status as `GET /v1/jobs/{id}` reports it.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema, PartialEq)]
+pub struct JobStatus {
+    /// Job id (UUID).
+    pub id: String,
+    pub state: JobState,
+    /// Epochs computed as a percentage of the total, 0–100.
+    pub percent: f64,
+    /// Epochs computed so far.
+    pub epochs_done: usize,
+    /// Epochs in the request.
+    pub epochs_total: usize,
+    /// When the job was accepted (RFC 3339, UTC).
+    pub created_at: String,
+    /// When the current run started (RFC 3339, UTC).
+    pub started_at: Option<String>,
+    /// When the job reached its final state (RFC 3339, UTC).
+    pub finished_at: Option<String>,
+    /// When a finished job and its result will be removed (RFC 3339, UTC).
+    pub expires_at: Option<String>,
+    /// Why the job failed.
+    pub error: Option<String>,
+    /// Times the job was started (above 1 when a restart interrupted it).
+    pub attempts: u32,
+    /// Where to fetch the result once `state` is `done`.
+    pub result_url: Option<String>,
+}
+
+/// What `DELETE /v1/jobs/{id}` did.
+#[derive(Debug)]
+pub enum Deleted {
+    /// The job was queued or running and is now cancelled.
+    Cancelled(JobStatus),
+    /// The job had finished; it and its result were removed.
+    Removed,
+}
+
+struct Entry {
+    rec: JobRecord,
+    progress: Arc<Progress>,
+}
+
+/// The job manager (one per service).
+pub struct Jobs {
+    store: Arc<Store>,
+    slots: Arc<Slots>,
+    metrics: Arc<Metrics>,
+    limits: ServiceLimits,
+    ttl: Duration,
+    table: Mutex<HashMap<String, Entry>>,
+    /// Serialises store writes so each writes the latest in-memory record.
+    write_lock: Mutex<()>,
+    queue: mpsc::UnboundedSender<String>,
+    job_slots: Arc<Semaphore>,
+    shutting_down: AtomicBool,
+    running: AtomicUsize,
+    idle: Notify,
+}
+
+pub fn now_ms() -> i64 {
+    SystemTime::now()
+        .duration_since(UNIX_EPOCH)
+        .map_or(0, |d| d.as_millis() as i64)
+}
+
+/// Unix milliseconds as RFC 3339 UTC text.
+pub fn rfc3339(ms: i64) -> String {
+    chrono::DateTime::from_timestamp_millis(ms)
+        .map(|d| d.to_rfc3339_opts(chrono::SecondsFormat::Millis, true))
+        .unwrap_or_default()
+}
+
+impl Jobs {
+    /// Loads the stored jobs, queues the unfinished ones again (oldest first), and starts
+    /// the dispatcher and the expiry sweeper. Must run inside the tokio runtime.
+    pub fn start(
+        store: Arc<Store>,
+        slots: Arc<Slots>,
+        metrics: Arc<Metrics>,
+        limits: ServiceLimits,
+        ttl: Duration,
+    ) -> Result<Arc<Jobs>, StoreError> {
+        let (tx, rx) = mpsc::unbounded_channel();
+        let mut records = store.load_all()?;
+        records.sort_by_key(|r| r.created_ms);
+        let mut table = HashMap::new();
+        let mut requeue = Vec::new();
+        for mut rec in records {
+            if !rec.state.is_final() {
+                // Interrupted (crash, kill -9, shutdown): run it again from the start.
+                rec.state = JobState::Queued;
+                rec.epochs_done = 0;
+                requeue.push(rec.id.clone());
+            }
+            table.insert(
+                rec.id.clone(),
+                Entry {
+                    rec,
+                    progress: Arc::new(Progress::new()),
+                },
+            );
+        }
+        let jobs = Arc::new(Jobs {
+            store,
+            slots,
+            metrics,
+            job_slots: Arc::new(Semaphore::new(limits.max_running_jobs.max(1))),
+            limits,
+            ttl,
+            table: Mutex::new(table),
+            write_lock: Mutex::new(()),
+            queue: tx,
+            shutting_down: AtomicBool::new(false),
+            running: AtomicUsize::new(0),
+            idle: Notify::new(),
+        });
+        for id in requeue {
+            let _ = jobs.queue.send(id);
+        }
+        jobs.sweep();
+        tokio::spawn(jobs.clone().dispatch(rx));
+        tokio::spawn(jobs.clone().sweeper());
+        Ok(jobs)
+    }
+
+    fn table(&self) -> MutexGuard<'_, HashMap<String, Entry>> {
+        // A poisoned lock only means a panic elsewhere; the map itself stays consistent.
+        self.table.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Validates a request body with the job limits and stores the new job; returns once
+    /// the store transaction is committed.
+    pub async fn submit(self: &Arc<Self>, body: axum::body::Bytes) -> Result<JobStatus, ApiError> {
+        if self.shutting_down.load(Ordering::SeqCst) {
+            return Err(ApiError::new(
+                axum::http::StatusCode::SERVICE_UNAVAILABLE,
+                "shutting down",
+            ));
+        }
+        let me = self.clone();
+        let rec = tokio::task::spawn_blocking(move || -> Result<JobRecord, ApiError> {
+            let text = std::str::from_utf8(&body)
+                .map_err(|_| ApiError::bad_request("request body is not UTF-8"))?;
+            let request = validate::parse_request(text)?;
+            let scene = Scene::from_request(&request, &me.limits.job_limits())?;
+            let rec = JobRecord {
+                id: uuid::Uuid::new_v4().to_string(),
+                state: JobState::Queued,
+                epochs_total: scene.epochs.len(),
+                epochs_done: 0,
+                created_ms: now_ms(),
+                started_ms: None,
+                finished_ms: None,
+                error: None,
+                attempts: 0,
+            };
+            me.store.insert(&rec, &body).map_err(ApiError::internal)?;
+            Ok(rec)
+        })
+        .await
+        .map_err(ApiError::internal)??;
+        let id = rec.id.clone();
+        let status = {
+            let mut t = self.table();
+            let entry = Entry {
+                rec,
+                progress: Arc::new(Progress::new()),
+            };
+            let s = self.status_of(&entry);
+            t.insert(id.clone(), entry);
+            s
+        };
+        let _ = self.queue.send(id);
+        Ok(status)
+    }
+
+    fn status_of(&self, e: &Entry) -> JobStatus {
+        let r = &e.rec;
+        let done = match r.state {
+            JobState::Running => e.progress.done(),
+            JobState::Done => r.epochs_total,
+            _ => r.epochs_done,
+        };
+        let percent = if r.epochs_total == 0 {
+            0.0
+        } else {
+            100.0 * done as f64 / r.epochs_total as f64
+        };
+        JobStatus {
+            id: r.id.clone(),
+            state: r.state,
+            percent,
+            epochs_done: done,
+            epochs_total: r.epochs_total,
+            created_at: rfc3339(r.created_ms),
+            started_at: r.started_ms.map(rfc3339),
+            finished_at: r.finished_ms.map(rfc3339),
+            expires_at: r
+                .finished_ms
+                .map(|f| rfc3339(f.saturating_add(self.ttl.as_millis() as i64))),
+            error: r.error.clone(),
+            attempts: r.attempts,
+            result_url: (r.state == JobState::Done).then(|| format!("/v1/jobs/{}/result", r.id)),
+        }
+    }
+
+    /// The status of one job.
+    pub fn status(&self, id: &str) -> Option<JobStatus> {
+        self.table().get(id).map(|e| self.status_of(e))
+    }
+
+    /// The most recent jobs, newest first.
+    pub fn list(&self, limit: usize, state: Option<JobState>) -> Vec<JobStatus> {
+        let t = self.table();
+        let mut v: Vec<&Entry> = t
+            .values()
+            .filter(|e| state.is_none_or(|s| e.rec.state == s))
+            .collect();
+        v.sort_by(|a, b| {
+            b.rec
+                .created_ms
+                .cmp(&a.rec.created_ms)
+                .then_with(|| a.rec.id.cmp(&b.rec.id))
+        });
+        v.into_iter()
+            .take(limit)
+            .map(|e| self.status_of(e))
+            .collect()
+    }
+
+    /// Number of jobs in each state (for `/metrics`).
+    pub fn counts(&self) -> HashMap<JobState, usize> {
+        let mut m: HashMap<JobState, usize> = JobState::ALL.iter().map(|&s| (s, 0)).collect();
+        for e in self.table().values() {
+            *m.entry(e.rec.state).or_default() += 1;
+        }
+        m
+    }
+
+    /// The stored response JSON of a finished job; `Err` says why there is none.
+    pub async fn result(&self, id: &str) -> Result<Vec<u8>, ApiError> {
+        let state = self
+            .table()
+            .get(id)
+            .map(|e| e.rec.state)
+            .ok_or_else(|| no_such_job(id))?;
+        if state != JobState::Done {
+            return Err(ApiError::conflict(format!(
+                "job is {}, there is no result{}",
+                state.name(),
+                if state.is_final() { "" } else { " yet" }
+            )));
+        }
+        let store = self.store.clone();
+        let key = id.to_string();
+        tokio::task::spawn_blocking(move || store.result(&key))
+            .await
+            .map_err(ApiError::internal)?
+            .map_err(ApiError::internal)?
+            // Removed by expiry between the two looks.
+            .ok_or_else(|| no_such_job(id))
+    }
+
+    /// Cancels a queued or running job, or removes a finished one with its result.
+    pub async fn delete(self: &Arc<Self>, id: &str) -> Result<Deleted, ApiError> {
+        let cancelled = {
+            let mut t = self.table();
+            let e = t.get_mut(id).ok_or_else(|| no_such_job(id))?;
+            match e.rec.state {
+                JobState::Queued | JobState::Running => {
+                    e.progress.cancel();
+                    if e.rec.state == JobState::Running {
+                        e.rec.epochs_done = e.progress.done();
+                    }
+                    e.rec.state = JobState::Cancelled;
+                    e.rec.finished_ms = Some(now_ms());
+                    true
+                }
+                _ => false,
+            }
+        };
+        let me = self.clone();
+        let key = id.to_string();
+        tokio::task::spawn_blocking(move || {
+            if cancelled {
+                me.persist(&key, None)
+            } else {
+                me.remove(&key)
+            }
+        })
+        .await
+        .map_err(ApiError::internal)?
+        .map_err(ApiError::internal)?;
+        if cancelled {
+            let s = self.status(id).ok_or_else(|| no_such_job(id))?;
+            Ok(Deleted::Cancelled(s))
+        } else {
+            Ok(Deleted::Removed)
+        }
+    }
+
+    /// Writes the job's current in-memory record (and `result`, if any) to the store.
+    fn persist(&self, id: &str, result: Option<&[u8]>) -> Result<(), StoreError> {
+        let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
+        let rec = self.table().get(id).map(|e| e.rec.clone());
+        match rec {
+            Some(rec) => {
+                let result = result.filter(|_| rec.state == JobState::Done);
+                self.store.update(&rec, result)
+            }
+            None => Ok(()),
+        }
+    }
+
+    fn remove(&self, id: &str) -> Result<(), StoreError> {
+        let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
+        self.table().remove(id);
+        self.store.remove(id)
+    }
+
+    async fn dispatch(self: Arc<Self>, mut rx: mpsc::UnboundedReceiver<String>) {
+        while let Some(id) = rx.recv().await {
+            let Ok(job_permit) = self.job_slots.clone().acquire_owned().await else {
+                return;
+            };
+            if self.shutting_down.load(Ordering::SeqCst) {
+                return;
+            }
+            let queued = self
+                .table()
+                .get(&id)
+                .is_some_and(|e| e.rec.state == JobState::Queued);
+            if !queued {
+                continue;
+            }
+            let slot = self.slots.acquire_for_job().await;
+            let me = self.clone();
+            self.running.fetch_add(1, Ordering::SeqCst);
+            tokio::spawn(async move {
+                me.run(&id, slot).await;
+                drop(job_permit);
+                if me.running.fetch_sub(1, Ordering::SeqCst) == 1 {
+                    me.idle.notify_waiters();
+                }
+            });
+        }
+    }
+
+    async fn run(self: &Arc<Self>, id: &str, slot: tokio::sync::OwnedSemaphorePermit) {
+        let progress = {
+            let mut t = self.table();
+            let Some(e) = t.get_mut(id) else { return };
+            if e.rec.state != JobState::Queued || self.shutting_down.load(Ordering::SeqCst) {
+                return;
+            }
+            e.rec.state = JobState::Running;
+            e.rec.started_ms = Some(now_ms());
+            e.rec.attempts += 1;
+            e.progress = Arc::new(Progress::new());
+            e.progress.clone()
+        };
+        let me = self.clone();
+        let key = id.to_string();
+        let outcome = tokio::task::spawn_blocking(move || {
+            let _slot = slot; // held until the computation has really stopped
+            me.persist(&key, None).map_err(|e| e.to_string())?;
+            let body = me
+                .store
+                .request(&key)
+                .map_err(|e| e.to_string())?
+                .ok_or("the stored request is missing")?;
+            let text = std::str::from_utf8(&body).map_err(|_| "request body is not UTF-8")?;
+            let scene = validate::parse_request(text)
+                .and_then(|r| Scene::from_request(&r, &me.limits.job_limits()))
+                .map_err(|e| e.to_string())?;
+            match simulate_with(&scene, &progress) {
+                Ok(resp) => {
+                    let json = serde_json::to_vec(&resp).map_err(|e| e.to_string())?;
+                    Ok(Some((json, resp.epochs.len())))
+                }
+                Err(Cancelled) => Ok(None),
+            }
+        })
+        .await
+        .unwrap_or_else(|e| Err(format!("the computation stopped: {e}")));
+
+        let (result, final_state) = {
+            let mut t = self.table();
+            let Some(e) = t.get_mut(id) else { return };
+            if e.rec.state != JobState::Running {
+                return; // cancelled (and persisted) while running
+            }
+            match outcome {
+                Ok(Some((json, n))) => {
+                    e.rec.state = JobState::Done;
+                    e.rec.epochs_done = n;
+                    e.rec.finished_ms = Some(now_ms());
+                    self.metrics.add_epochs("job", n as u64);
+                    (Some(json), JobState::Done)
+                }
+                // Stopped by shutdown: stays `running` on disk, so it runs again on restart.
+                Ok(None) => return,
+                Err(msg) => {
+                    e.rec.state = JobState::Failed;
+                    e.rec.error = Some(msg);
+                    e.rec.epochs_done = e.progress.done();
+                    e.rec.finished_ms = Some(now_ms());
+                    (None, JobState::Failed)
+                }
+            }
+        };
+        let me = self.clone();
+        let key = id.to_string();
+        let written =
+            tokio::task::spawn_blocking(move || me.persist(&key, result.as_deref())).await;
+        if !matches!(written, Ok(Ok(()))) {
+            // The result could not be stored: report the job failed rather than done
+            // with nothing to serve (on disk it is still `running` and will run again).
+            if let Some(e) = self.table().get_mut(id) {
+                e.rec.state = JobState::Failed;
+                e.rec.error = Some(format!("could not store the {} result", final_state.name()));
+            }
+        }
+    }
+
+    /// Removes finished jobs older than the time to live.
+    fn sweep(&self) {
+        let cutoff = now_ms().saturating_sub(self.ttl.as_millis() as i64);
+        let expired: Vec<String> = self
+            .table()
+            .values()
+            .filter(|e| e.rec.state.is_final() && e.rec.finished_ms.is_some_and(|f| f <= cutoff))
+            .map(|e| e.rec.id.clone())
+            .collect();
+        for id in expired {
+            let _ = self.remove(&id);
+        }
+    }
+
+    async fn sweeper(self: Arc<Self>) {
+        let every = (self.ttl / 4).clamp(Duration::from_secs(1), Duration::from_secs(60));
+        loop {
+            tokio::time::sleep(every).await;
+            if self.shutting_down.load(Ordering::SeqCst) {
+                return;
+            }
+            let me = self.clone();
+            let _ = tokio::task::spawn_blocking(move || me.sweep()).await;
+        }
+    }
+
+    /// Stops taking jobs, asks the running ones to stop at their next epoch and waits
+    /// (up to `grace`) until they have. They stay `running` on disk and run again on the
+    /// next start: epochs are independent, so a rerun gives the same result.
+    pub async fn shutdown(&self, grace: Duration) {
+        self.shutting_down.store(true, Ordering::SeqCst);
+        for e in self.table().values() {
+            if e.rec.state == JobState::Running {
+                e.progress.cancel();
+            }
+        }
+        let wait = async {
+            loop {
+                let notified = self.idle.notified();
+                if self.running.load(Ordering::SeqCst) == 0 {
+                    return;
+                }
+                notified.await;
+            }
+        };
+        let _ = tokio::time::timeout(grace, wait).await;
+    }
+
+    pub fn is_shutting_down(&self) -> bool {
+        self.shutting_down.load(Ordering::SeqCst)
+    }
+}
+
+pub fn no_such_job(id: &str) -> ApiError {
+    ApiError::not_found(format!("no job with id `{id}` (finished jobs expire)")).with_field("id")
+}

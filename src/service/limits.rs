@@ -1,0 +1,134 @@
+//! The service's limits and the computation slots that enforce the concurrency limit.
+
+use crate::scene::Limits;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+use tokio::sync::{OwnedSemaphorePermit, Semaphore};
+
+/// Every configurable bound of the service (flags and `GLINT_…` variables in `glint serve`).
+#[derive(Debug, Clone)]
+pub struct ServiceLimits {
+    /// Largest request body accepted, bytes.
+    pub max_body_bytes: usize,
+    /// Largest mesh, triangles.
+    pub max_triangles: usize,
+    /// Most epochs in one `POST /v1/lightcurves`.
+    pub max_sync_epochs: usize,
+    /// Most epochs in one job.
+    pub max_job_epochs: usize,
+    /// Computations running at once (synchronous requests and jobs together).
+    pub max_concurrent: usize,
+    /// Synchronous requests allowed to wait for a slot; beyond this they get 503.
+    pub max_queued: usize,
+    /// Jobs running at once (each also takes a computation slot).
+    pub max_running_jobs: usize,
+    /// Time a synchronous request may take, waiting included.
+    pub request_timeout: Duration,
+}
+
+impl Default for ServiceLimits {
+    fn default() -> Self {
+        let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
+        ServiceLimits {
+            max_body_bytes: 32 << 20,
+            max_triangles: 1_000_000,
+            max_sync_epochs: 20_000,
+            max_job_epochs: 2_000_000,
+            max_concurrent: cores,
+            max_queued: 64,
+            max_running_jobs: 1,
+            request_timeout: Duration::from_secs(60),
+        }
+    }
+}
+
+impl ServiceLimits {
+    /// Engine limits for a synchronous request.
+    pub fn sync_limits(&self) -> Limits {
+        Limits {
+            max_triangles: self.max_triangles,
+            max_epochs: self.max_sync_epochs,
+        }
+    }
+
+    /// Engine limits for a job.
+    pub fn job_limits(&self) -> Limits {
+        Limits {
+            max_triangles: self.max_triangles,
+            max_epochs: self.max_job_epochs,
+        }
+    }
+}
+
+/// Computation slots: a semaphore with a bounded number of waiters.
+///
+/// The engine parallelises each request over epochs with rayon, so a few concurrent
+/// requests already fill the cores; more would only share them and add latency.
+#[derive(Debug)]
+pub struct Slots {
+    semaphore: Arc<Semaphore>,
+    max_waiting: usize,
+    waiting: AtomicUsize,
+    total: usize,
+}
+
+/// No slot free and the wait queue full.
+#[derive(Debug, Clone, Copy)]
+pub struct Busy;
+
+impl Slots {
+    pub fn new(max_concurrent: usize, max_waiting: usize) -> Self {
+        let total = max_concurrent.max(1);
+        Slots {
+            semaphore: Arc::new(Semaphore::new(total)),
+            max_waiting,
+            waiting: AtomicUsize::new(0),
+            total,
+        }
+    }
+
+    /// A slot for a synchronous request: at once if one is free, after a wait if fewer
+    /// than `max_waiting` already wait, else [`Busy`].
+    pub async fn acquire(&self) -> Result<OwnedSemaphorePermit, Busy> {
+        if let Ok(p) = self.semaphore.clone().try_acquire_owned() {
+            return Ok(p);
+        }
+        if self.waiting.fetch_add(1, Ordering::SeqCst) >= self.max_waiting {
+            self.waiting.fetch_sub(1, Ordering::SeqCst);
+            return Err(Busy);
+        }
+        // Decrement on every exit, also when the request is dropped while waiting.
+        struct Waiting<'a>(&'a AtomicUsize);
+        impl Drop for Waiting<'_> {
+            fn drop(&mut self) {
+                self.0.fetch_sub(1, Ordering::SeqCst);
+            }
+        }
+        let _w = Waiting(&self.waiting);
+        self.semaphore
+            .clone()
+            .acquire_owned()
+            .await
+            .map_err(|_| Busy)
+    }
+
+    /// A slot for a job: jobs wait as long as needed (they are queued on disk anyway).
+    pub async fn acquire_for_job(&self) -> OwnedSemaphorePermit {
+        self.semaphore
+            .clone()
+            .acquire_owned()
+            .await
+            .expect("the semaphore is never closed")
+    }
+
+    /// Computations running now.
+    pub fn in_use(&self) -> usize {
+        self.total - self.semaphore.available_permits()
+    }
+
+    /// Synchronous requests waiting for a slot now.
+    pub fn waiting(&self) -> usize {
+        self.waiting.load(Ordering::SeqCst)
+    }
+}

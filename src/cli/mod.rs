@@ -2,6 +2,7 @@
 
 pub mod serve;
 pub mod simulate;
+pub mod tradeoff;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -18,6 +19,9 @@ pub struct Cli {
 pub enum Command {
     /// Compute a light curve from a request file (JSON, as the HTTP service takes).
     Simulate(SimulateArgs),
+    /// Run every method over a range of its fidelity setting; chart error against time per
+    /// epoch (SVG + PNG) and print the table.
+    Tradeoff(tradeoff::TradeoffArgs),
     /// Write the built-in objects as OBJ files (they are kept in scenes/objects).
     ExportObjects {
         /// Directory to write into.
@@ -54,6 +58,7 @@ pub struct SimulateArgs {
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::Simulate(args)) => simulate::run(&args),
+        Some(Command::Tradeoff(args)) => tradeoff::run(&args),
         Some(Command::ExportObjects { dir }) => export_objects(&dir),
         Some(Command::Serve(args)) => serve::run(&args),
         Some(Command::Openapi) => serve::print_openapi(),

@@ -16,6 +16,7 @@ use glam::DVec3;
 #[derive(Default)]
 pub struct Scratch {
     lit: Vec<LitFace>,
+    image: super::image::ImageScratch,
 }
 
 /// A face that reflects light towards the observer at this epoch.
@@ -131,9 +132,14 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     let mut earth_sum = 0.0;
     let mut lit_visible_area = 0.0;
     let mut rays = 0u64;
+    if let Some(img) = &p.image {
+        let lit = scratch.lit.iter().map(|lf| (lf.face, lf.side, lf.sun > 0.0, lf.earth > 0.0));
+        rays += img.sample(&mut scratch.image, &p.faces, lit, v, l, earthshine.shadow_dir);
+    }
     for lf in &scratch.lit {
         let face = &p.faces.faces[lf.face as usize];
         let (f_sun, f_earth) = match &p.visibility {
+            _ if p.image.is_some() => scratch.image.fractions(lf.face as usize, face.area),
             None => (1.0, 1.0),
             Some(vis) => {
                 let dirs = Uncertain {

@@ -7,6 +7,8 @@
 //! ```
 
 pub mod eq12;
+pub mod image;
+pub mod methods;
 pub mod visibility;
 
 use crate::geometry::{convex, Faces};
@@ -59,6 +61,8 @@ pub struct Prepared<'a> {
     pub convex: bool,
     /// Ray-casting state; `None` when no rays are needed.
     pub visibility: Option<Visibility>,
+    /// The `image` method's pixel sampler (replaces `visibility` when present).
+    pub image: Option<self::image::ImageView>,
     /// Band solar irradiance at 1 AU, W/m² (the magnitude zero point).
     pub sun_band_1au: f64,
     /// What was chosen and why, for `summary.method`.
@@ -99,13 +103,22 @@ impl<'a> Prepared<'a> {
                 Some(Visibility::build(scene, &faces, VisibilityMode::Centroid)),
                 "centroid: one ray per direction at each triangle's centroid (all lit or all dark)".to_string(),
             ),
+            Method::Image => (
+                None,
+                format!(
+                    "image: orthographic view from the observer, {0}x{0} pixels, {1}x{1} samples each, shadow rays per hit",
+                    scene.image_size, scene.image_samples
+                ),
+            ),
         };
+        let image = (scene.method == Method::Image).then(|| self::image::ImageView::build(scene, &faces));
         let ill = &scene.illumination;
         Prepared {
             scene,
             faces,
             convex,
             visibility,
+            image,
             sun_band_1au: sun::band_irradiance_1au(ill.band_um, ill.sun_temperature_k),
             method,
         }
@@ -121,6 +134,9 @@ pub fn simulate(scene: &Scene) -> Response {
 pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
     let start = Instant::now();
     progress.total.store(scene.epochs.len(), Ordering::Relaxed);
+    // `centroid` with subdivisions samples a refined copy of the mesh
+    let refined = methods::refined_for_centroid(scene);
+    let scene = refined.as_ref().unwrap_or(scene);
     let prepared = Prepared::new(scene);
     let rays = AtomicU64::new(0);
     let epochs: Vec<Option<EpochResult>> = scene

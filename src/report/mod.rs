@@ -1,4 +1,5 @@
 //! Writing results: CSV and a magnitude plot.
 
+pub mod chart;
 pub mod csv;
 pub mod plot;

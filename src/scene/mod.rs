@@ -82,6 +82,9 @@ pub enum Method {
     Centroid,
     /// Back-face culling only (exact for convex meshes, wrong otherwise).
     Convex,
+    /// Orthographic pixel sampling from the observer, as rendering and summing an image
+    /// would: `image_size`² pixels, `image_samples`² rays each, plus shadow rays.
+    Image,
 }
 
 impl Method {
@@ -91,6 +94,7 @@ impl Method {
             Method::Adaptive => "adaptive",
             Method::Centroid => "centroid",
             Method::Convex => "convex",
+            Method::Image => "image",
         }
     }
 }
@@ -105,6 +109,12 @@ pub struct Scene {
     /// Relative tolerance of the visibility integration.
     pub tolerance: f64,
     pub method: Method,
+    /// `image` method: pixels on a side of the view, which spans the mesh's bounding sphere.
+    pub image_size: u32,
+    /// `image` method: stratified samples per pixel side (samples² per pixel).
+    pub image_samples: u32,
+    /// `centroid` method: times each triangle is split into four before sampling.
+    pub centroid_subdivisions: u32,
 }
 
 impl Scene {

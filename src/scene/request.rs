@@ -23,9 +23,24 @@ pub struct Request {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(example = 1e-3)]
     pub tolerance: Option<f64>,
-    /// Integration method: `auto` (default), `adaptive`, `centroid` or `convex`.
+    /// Integration method: `auto` (default), `adaptive`, `centroid`, `convex` or `image`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub method: Option<String>,
+    /// `image` method only: pixels on a side of the orthographic view from the observer
+    /// (it spans the object's bounding sphere), 8 to 4096. Default 256.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 256)]
+    pub image_size: Option<u32>,
+    /// `image` method only: stratified samples per pixel side (samples² per pixel),
+    /// 1 to 16. Default 4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 4)]
+    pub image_samples: Option<u32>,
+    /// `centroid` method only: split every triangle into four this many times before
+    /// casting one ray per direction at each centroid, 0 to 8. Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 0)]
+    pub centroid_subdivisions: Option<u32>,
 }
 
 /// The object: a triangle mesh and the materials its triangles use.

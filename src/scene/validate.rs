@@ -201,13 +201,15 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         Some("adaptive") => Method::Adaptive,
         Some("centroid") => Method::Centroid,
         Some("convex") => Method::Convex,
+        Some("image") => Method::Image,
         Some(other) => {
             return err(
                 "method",
-                format!("unknown method `{other}`; expected auto, adaptive, centroid or convex"),
+                format!("unknown method `{other}`; expected auto, adaptive, centroid, convex or image"),
             )
         }
     };
+    let (image_size, image_samples, centroid_subdivisions) = fidelity(req, method, mesh.triangles.len(), limits)?;
     Ok(Scene {
         mesh,
         materials,
@@ -215,7 +217,51 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         illumination,
         tolerance,
         method,
+        image_size,
+        image_samples,
+        centroid_subdivisions,
     })
+}
+
+/// The methods' fidelity settings: (image_size, image_samples, centroid_subdivisions).
+/// A setting given for another method is an error, so a request never silently ignores it.
+fn fidelity(req: &Request, method: Method, triangles: usize, limits: &Limits) -> Result<(u32, u32, u32), ValidationError> {
+    let only_for = |field: &str, m: Method| -> Result<(), ValidationError> {
+        if method != m {
+            return err(field, format!("applies only to \"method\": \"{}\" (the request uses `{}`)", m.name(), method.name()));
+        }
+        Ok(())
+    };
+    let mut out = (256, 4, 0);
+    if let Some(size) = req.image_size {
+        only_for("image_size", Method::Image)?;
+        if !(8..=4096).contains(&size) {
+            return err("image_size", format!("must be between 8 and 4096 pixels, got {size}"));
+        }
+        out.0 = size;
+    }
+    if let Some(samples) = req.image_samples {
+        only_for("image_samples", Method::Image)?;
+        if !(1..=16).contains(&samples) {
+            return err("image_samples", format!("must be between 1 and 16 per pixel side, got {samples}"));
+        }
+        out.1 = samples;
+    }
+    if let Some(k) = req.centroid_subdivisions {
+        only_for("centroid_subdivisions", Method::Centroid)?;
+        if k > 8 {
+            return err("centroid_subdivisions", format!("must be between 0 and 8, got {k}"));
+        }
+        let refined = (triangles as u128) << (2 * k);
+        if refined > limits.max_triangles.min(1 << 26) as u128 {
+            return err(
+                "centroid_subdivisions",
+                format!("too many triangles after {k} subdivisions: {refined} (limit {})", limits.max_triangles.min(1 << 26)),
+            );
+        }
+        out.2 = k;
+    }
+    Ok(out)
 }
 
 fn illumination(req: &Request) -> Result<Illumination, ValidationError> {

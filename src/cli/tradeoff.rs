@@ -1,0 +1,213 @@
+//! `glint tradeoff`: every method over a range of its fidelity setting, error per epoch
+//! against a converged reference, time per epoch; a chart (SVG + PNG) and a table.
+//!
+//! The reference is the finest adaptive run; it is itself checked against the `image`
+//! method at a high resolution on a subset of the epochs, and their agreement printed.
+
+use crate::integrate::methods::{self, Run, Setting};
+use crate::report::chart;
+use crate::scene::{Limits, Method, Scene};
+use anyhow::Context;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+#[derive(Debug, clap::Args)]
+pub struct TradeoffArgs {
+    /// Request JSON file.
+    pub request: PathBuf,
+    /// Chart file (SVG); a PNG is written beside it and the table as Markdown (`.md`).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Use every N-th epoch of the request only (quicker runs).
+    #[arg(long, default_value_t = 1)]
+    pub every: usize,
+    /// Tolerance of the reference adaptive run.
+    #[arg(long, default_value_t = 1e-6)]
+    pub reference_tolerance: f64,
+    /// Pixels on a side of the image run that checks the reference.
+    #[arg(long, default_value_t = 1024)]
+    pub check_size: u32,
+    /// Samples per pixel side of the image run that checks the reference.
+    #[arg(long, default_value_t = 2)]
+    pub check_samples: u32,
+    /// The check uses every N-th of the (selected) epochs.
+    #[arg(long, default_value_t = 8)]
+    pub check_every: usize,
+    /// Fewer and cheaper settings (a quick look, or CI).
+    #[arg(long)]
+    pub quick: bool,
+    /// Minimum seconds of repeated runs per setting for its timing (best of up to 5).
+    #[arg(long, default_value_t = 1.0)]
+    pub min_seconds: f64,
+}
+
+/// Subsamples the scene's epochs.
+fn every_nth(scene: &Scene, n: usize) -> Scene {
+    Scene {
+        epochs: scene.epochs.iter().step_by(n.max(1)).copied().collect(),
+        ..scene.clone()
+    }
+}
+
+pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(&args.request)
+        .with_context(|| format!("cannot read {}", args.request.display()))?;
+    let full = Scene::from_json(&text, &Limits::unlimited())
+        .map_err(|e| anyhow::anyhow!("invalid request {}: {e}", args.request.display()))?;
+    let scene = every_nth(&full, args.every);
+    let name = args
+        .request
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    eprintln!(
+        "{name}: {} epochs, {} triangles; reference: adaptive, tolerance {:e}",
+        scene.epochs.len(),
+        scene.mesh.triangles.len(),
+        args.reference_tolerance
+    );
+
+    let reference = methods::run(
+        &scene,
+        Setting::Adaptive {
+            tolerance: args.reference_tolerance,
+        },
+        0.0,
+    );
+    let check_scene = every_nth(&scene, args.check_every);
+    let check = methods::run(
+        &check_scene,
+        Setting::Image {
+            size: args.check_size,
+            samples: args.check_samples,
+        },
+        0.0,
+    );
+    let ref_subset: Vec<f64> = reference
+        .irradiance
+        .iter()
+        .step_by(args.check_every.max(1))
+        .copied()
+        .collect();
+    let agreement = methods::errors(&check.irradiance, &ref_subset);
+    let check_line = format!(
+        "reference check: image {0} px x {1}x{1} samples against adaptive {2:e} on {3} epochs: max {4:.2e}, RMS {5:.2e} relative",
+        args.check_size,
+        args.check_samples,
+        args.reference_tolerance,
+        ref_subset.len(),
+        agreement.max,
+        agreement.rms
+    );
+    eprintln!("{check_line}");
+
+    let mut rows: Vec<(Run, methods::Errors)> = Vec::new();
+    for setting in methods::default_sweep(args.quick) {
+        let r = methods::run(&scene, setting, args.min_seconds);
+        let e = methods::errors(&r.irradiance, &reference.irradiance);
+        eprintln!(
+            "  {:<9} {:<22} max {:.2e}  rms {:.2e}  {:.4} ms/epoch",
+            setting.method().name(),
+            setting.label(),
+            e.max,
+            e.rms,
+            r.ms_per_epoch
+        );
+        rows.push((r, e));
+    }
+
+    // One line per method, in the sweep's order.
+    let mut lines: Vec<chart::Line> = Vec::new();
+    for (r, e) in &rows {
+        let name = r.setting.method().name();
+        let point = (r.ms_per_epoch, e.max, e.rms);
+        match lines.iter_mut().find(|l| l.name == name) {
+            Some(l) => l.points.push(point),
+            None => lines.push(chart::Line {
+                name: name.to_string(),
+                points: vec![point],
+            }),
+        }
+    }
+    let title = format!(
+        "{name}: error against time per epoch ({} epochs, {} triangles)",
+        scene.epochs.len(),
+        scene.mesh.triangles.len()
+    );
+    let svg = chart::svg(&title, &lines).map_err(|e| anyhow::anyhow!(e))?;
+    std::fs::write(&args.out, svg)
+        .with_context(|| format!("cannot write {}", args.out.display()))?;
+    let png_path = args.out.with_extension("png");
+    match chart::png(&title, &lines) {
+        Ok(bytes) => std::fs::write(&png_path, bytes)
+            .with_context(|| format!("cannot write {}", png_path.display()))?,
+        Err(e) => eprintln!("PNG not written: {e}"),
+    }
+
+    let mut md = String::new();
+    let _ = writeln!(md, "Error against the reference (adaptive, tolerance {:e}) per epoch, relative to the epoch's irradiance", args.reference_tolerance);
+    let _ = writeln!(md, "(epochs darker than {:e} of the brightest: relative to {:e} of the brightest); time per epoch is", methods::ERROR_FLOOR, methods::ERROR_FLOOR);
+    let _ = writeln!(
+        md,
+        "the whole `simulate` call (preparation included) over {} epochs on this machine.",
+        scene.epochs.len()
+    );
+    let _ = writeln!(md, "{check_line}.\n");
+    let _ = writeln!(
+        md,
+        "| method | setting | max error | RMS error | ms/epoch | rays/epoch |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|");
+    for (r, e) in &rows {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.2e} | {:.2e} | {:.4} | {:.0} |",
+            r.setting.method().name(),
+            r.setting.label(),
+            e.max,
+            e.rms,
+            r.ms_per_epoch,
+            r.rays as f64 / scene.epochs.len().max(1) as f64
+        );
+    }
+    if let Some(s) = auto_speedup(&rows) {
+        let _ = writeln!(md, "\n{s}");
+    }
+    let md_path = args.out.with_extension("md");
+    std::fs::write(&md_path, &md).with_context(|| format!("cannot write {}", md_path.display()))?;
+    println!("{md}");
+    println!(
+        "chart: {} and {}; table: {}",
+        args.out.display(),
+        png_path.display(),
+        md_path.display()
+    );
+    Ok(())
+}
+
+/// The speed-up of `auto` over `adaptive` at equal error: for `auto` at tolerance 1e-3
+/// (the default), the cheapest adaptive run whose max error is no larger, over auto's time.
+fn auto_speedup(rows: &[(Run, methods::Errors)]) -> Option<String> {
+    let (auto, auto_e) = rows
+        .iter()
+        .find(|(r, _)| matches!(r.setting, Setting::Auto { tolerance } if tolerance == 1e-3))?;
+    let cheapest = rows
+        .iter()
+        .filter(|(r, e)| r.setting.method() == Method::Adaptive && e.max <= auto_e.max.max(1e-15))
+        .min_by(|a, b| a.0.ms_per_epoch.total_cmp(&b.0.ms_per_epoch));
+    Some(match cheapest {
+        Some((a, a_e)) => format!(
+            "auto (tolerance 1e-3, {}) vs adaptive at equal max error: adaptive needs {} ({:.2e} max error) at {:.4} ms/epoch, auto {:.4} ms/epoch: speed-up x{:.2}",
+            auto.method.split(':').next().unwrap_or(""),
+            a.setting.label(),
+            a_e.max,
+            a.ms_per_epoch,
+            auto.ms_per_epoch,
+            a.ms_per_epoch / auto.ms_per_epoch
+        ),
+        None => format!(
+            "auto (tolerance 1e-3) reaches max error {:.2e}, which no adaptive setting of the sweep reaches",
+            auto_e.max
+        ),
+    })
+}

@@ -102,6 +102,22 @@ impl Faces {
         Faces { faces }
     }
 
+    /// Reorders the faces along a Morton curve of their centroids, so that runs of
+    /// consecutive faces are spatially compact (visibility groups them into patches).
+    pub fn sort_spatially(&mut self) {
+        let n = self.faces.len();
+        if n < 2 {
+            return;
+        }
+        let lo = self.faces.iter().fold(DVec3::splat(f64::INFINITY), |a, f| a.min(f.centroid));
+        let hi = self.faces.iter().fold(DVec3::splat(f64::NEG_INFINITY), |a, f| a.max(f.centroid));
+        let ext = (hi - lo).max(DVec3::splat(1e-300));
+        self.faces.sort_by_cached_key(|f| {
+            let q = ((f.centroid - lo) / ext * 1023.0).as_uvec3();
+            morton3(q.x, q.y, q.z)
+        });
+    }
+
     pub fn len(&self) -> usize {
         self.faces.len()
     }
@@ -165,4 +181,17 @@ fn union(parent: &mut [u32], a: u32, b: u32) {
     if ra != rb {
         parent[ra.max(rb) as usize] = ra.min(rb);
     }
+}
+
+/// Interleaves the low 10 bits of x, y, z.
+fn morton3(x: u32, y: u32, z: u32) -> u64 {
+    fn spread(v: u32) -> u64 {
+        let mut x = v as u64 & 0x3ff;
+        x = (x | (x << 16)) & 0x30000ff;
+        x = (x | (x << 8)) & 0x300f00f;
+        x = (x | (x << 4)) & 0x30c30c3;
+        x = (x | (x << 2)) & 0x9249249;
+        x
+    }
+    spread(x) | (spread(y) << 1) | (spread(z) << 2)
 }

@@ -16,6 +16,7 @@ use glam::DVec3;
 #[derive(Default)]
 pub struct Scratch {
     lit: Vec<LitFace>,
+    visibility: super::visibility::Cache,
     image: super::image::ImageScratch,
 }
 
@@ -90,6 +91,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
 
     // Pass 1: which faces send light to the observer, and how much if fully visible.
     scratch.lit.clear();
+    scratch.visibility.reset();
     let mut unshadowed = 0.0;
     for (i, face) in p.faces.faces.iter().enumerate() {
         let material = &scene.materials[face.material as usize];
@@ -151,7 +153,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                 // the tolerance's share of the epoch's signal.
                 let weight = lf.sun + lf.earth;
                 let min_area = scene.tolerance * unshadowed / weight;
-                let (a_sun, a_earth, n) = vis.visible_area(lf.face as usize, lf.side, &dirs, min_area);
+                let (a_sun, a_earth, n) = vis.visible_area(&mut scratch.visibility, lf.face as usize, lf.side, &dirs, min_area);
                 rays += n;
                 (a_sun / face.area, a_earth / face.area)
             }

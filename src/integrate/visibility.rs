@@ -1,24 +1,31 @@
 //! Which part of a face is both lit and seen: shadowing and occlusion by the mesh itself.
 //!
-//! Per face and epoch, a direction (to the Sun, the Earth or the observer) is *clear*
-//! when no possible occluder can lie along it: the possible occluders of a face are
-//! found once per request (triangles with a vertex in front of the face's plane), and per
-//! epoch each is tested against the half-infinite cylinder swept by the face's bounding
-//! sphere along the direction. A face with every needed direction clear is wholly lit and
-//! seen — exact, no rays. Only the rest are sampled with rays, refining each triangle
-//! adaptively (4-way splits) until either the samples agree or a leaf is small enough
-//! that mis-classifying all of it stays within the tolerance.
+//! Rays are cast only where a face may really be partly shadowed or hidden. Per face and
+//! epoch, a direction (to the Sun, the Earth or the observer) is *clear* when no part of
+//! the mesh can lie along it. Two exact tests prove a direction clear without rays:
+//! - **reach**: the occluder's bounding sphere misses the half-infinite cylinder swept by
+//!   the face's bounding sphere along the direction;
+//! - **half-space**: if the face lies wholly in front of an occluder's plane and the
+//!   direction points away from that plane (d·n > 0), a ray from the face only moves
+//!   further from the plane and can never cross the occluder (likewise behind / towards).
+//!   This is what keeps a concave dish lit from in front free of rays.
+//! Faces are grouped into spatial *patches* (with bounding spheres and normal cones), so
+//! whole groups of occluders are dismissed at once; only faces with an unproven direction
+//! are sampled with rays, refining each triangle adaptively (4-way splits) until either the
+//! samples agree or a leaf is small enough that mis-classifying all of it stays within the
+//! tolerance's share of the epoch's signal.
 
 use crate::geometry::bvh::Occluder;
 use crate::geometry::Faces;
 use crate::scene::Scene;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// How faces are sampled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VisibilityMode {
-    /// Clear-direction classification, then adaptive refinement of uncertain faces.
+    /// Clear-direction proofs, then adaptive refinement of the faces left uncertain.
     Adaptive,
     /// One ray per direction at each face's centroid (faces are single triangles).
     Centroid,
@@ -35,30 +42,37 @@ pub struct Uncertain {
     pub earth: Option<DVec3>,
 }
 
-/// Possible occluders stored as a compressed list per face and side.
-#[derive(Default)]
-struct Candidates {
-    offsets: Vec<u32>,
-    items: Vec<u32>,
-    /// Faces whose list would be too long: always sampled.
-    all: Vec<bool>,
-}
-
-impl Candidates {
-    fn of(&self, face: usize) -> Option<&[u32]> {
-        if self.all[face] {
-            None
-        } else {
-            Some(&self.items[self.offsets[face] as usize..self.offsets[face + 1] as usize])
-        }
-    }
-}
-
+/// Per-face geometry for the tests.
 struct FaceGeom {
     normal: DVec3,
+    /// Point on the plane (centroid), m.
     centroid: DVec3,
     radius: f64,
+    two_sided: bool,
     triangles: Vec<u32>,
+    /// Distinct vertices of the face, for exact half-space tests.
+    vertices: Vec<DVec3>,
+    patch: u32,
+}
+
+/// A spatial group of consecutive faces.
+struct Patch {
+    centre: DVec3,
+    radius: f64,
+    /// Normal cone: axis and sin of its half-angle (> 1 when the cone is too wide to use).
+    axis: DVec3,
+    sin_half: f64,
+    faces: Range<u32>,
+}
+
+/// Relation of a receiver patch to an occluder patch's planes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Side {
+    /// Every receiver vertex on or in front of every occluder face plane.
+    Front,
+    /// Every receiver vertex on or behind every occluder face plane.
+    Behind,
+    Mixed,
 }
 
 /// Ray-casting state built once per request.
@@ -67,301 +81,421 @@ pub struct Visibility {
     occluder: Occluder,
     corners: Vec<[DVec3; 3]>,
     faces: Vec<FaceGeom>,
-    /// Bounding spheres (centre, radius) of occluder clusters.
-    clusters: Vec<(DVec3, f64)>,
-    front: Candidates,
-    back: Candidates,
+    patches: Vec<Patch>,
+    /// Per receiver patch: the occluder patches that may block it, with their relation.
+    candidates: Vec<Vec<(u32, Side)>>,
+    tol: f64,
 }
 
-/// More triangles than this are grouped into clusters for the candidate lists.
-const MAX_CLUSTERS: usize = 4096;
-/// Above this many candidate entries in all, faces are sampled without classification.
-const MAX_CANDIDATE_ENTRIES: usize = 32_000_000;
+/// Per-thread cache of patch-level results, valid within one epoch.
+#[derive(Default)]
+pub struct Cache {
+    key: Option<(u32, bool)>,
+    /// Flagged occluder patches for view, sun, earth (None: not computed yet).
+    flagged: [Option<Vec<u32>>; 3],
+}
+
+impl Cache {
+    /// Forgets everything: call at the start of each epoch.
+    pub fn reset(&mut self) {
+        self.key = None;
+        self.flagged = [None, None, None];
+    }
+}
+
 /// Deepest refinement: leaves down to 4⁻¹⁰ ≈ 1e-6 of a triangle.
 const MAX_DEPTH: u32 = 10;
+/// Above this faces × vertices, patch relations come from bounding spheres (conservative)
+/// instead of every vertex.
+const EXACT_WORK: usize = 300_000_000;
 
 impl Visibility {
+    /// Builds the BVH and the occluder candidates. `faces` should be in spatial order
+    /// ([`Faces::sort_spatially`]) so that patches are compact.
     pub fn build(scene: &Scene, faces: &Faces, mode: VisibilityMode) -> Visibility {
         let mesh = &scene.mesh;
         let occluder = Occluder::build(mesh);
         let corners: Vec<[DVec3; 3]> = (0..mesh.triangles.len()).map(|i| mesh.corners(i)).collect();
-        let geoms: Vec<FaceGeom> = faces
-            .faces
-            .iter()
-            .map(|f| FaceGeom {
-                normal: f.normal,
-                centroid: f.centroid,
-                radius: f.radius,
-                triangles: f.triangles.clone(),
-            })
-            .collect();
         let (_, scale) = mesh.bounding_sphere();
         let tol = 1e-9 * scale;
-
-        // Clusters of triangles (one per triangle for small meshes) with the face each
-        // triangle belongs to, so a face never counts itself as an occluder.
-        let mut face_of = vec![0u32; mesh.triangles.len()];
-        for (fi, f) in faces.faces.iter().enumerate() {
-            for &t in &f.triangles {
-                face_of[t as usize] = fi as u32;
-            }
-        }
-        let clusters_of_tris: Vec<Vec<u32>> = cluster_triangles(&corners);
-        let clusters: Vec<(DVec3, f64)> = clusters_of_tris
+        let nf = faces.len();
+        let k = ((nf as f64).sqrt().round() as usize).clamp(1, 1024);
+        let per_patch = nf.div_ceil(k);
+        let mut geoms: Vec<FaceGeom> = faces
+            .faces
             .iter()
-            .map(|tris| {
-                let pts = tris.iter().flat_map(|&t| corners[t as usize]);
-                bounding_sphere(pts)
+            .enumerate()
+            .map(|(i, f)| {
+                let mut vertices: Vec<DVec3> = f.triangles.iter().flat_map(|&t| corners[t as usize]).collect();
+                vertices.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap_or(std::cmp::Ordering::Equal));
+                vertices.dedup();
+                FaceGeom {
+                    normal: f.normal,
+                    centroid: f.centroid,
+                    radius: f.radius,
+                    two_sided: scene.materials[f.material as usize].two_sided,
+                    triangles: f.triangles.clone(),
+                    vertices,
+                    patch: (i / per_patch) as u32,
+                }
             })
             .collect();
-
-        let side_lists = |side: f64| -> Candidates {
-            let per_face: Vec<Option<Vec<u32>>> = geoms
-                .par_iter()
-                .enumerate()
-                .map(|(fi, f)| {
-                    if mode == VisibilityMode::Centroid {
-                        return None;
-                    }
-                    let two_sided = scene.materials[faces.faces[fi].material as usize].two_sided;
-                    if side < 0.0 && !two_sided {
-                        return Some(Vec::new());
-                    }
-                    let n = f.normal * side;
-                    let d = n.dot(f.centroid);
-                    let list = (0..clusters.len() as u32)
-                        .filter(|&c| {
-                            let (cc, rc) = clusters[c as usize];
-                            if n.dot(cc) - d + rc <= tol {
-                                return false; // wholly behind the plane
+        let patches: Vec<Patch> = (0..nf.div_ceil(per_patch))
+            .map(|p| {
+                let range = (p * per_patch) as u32..((p + 1) * per_patch).min(nf) as u32;
+                patch_of(&geoms[range.start as usize..range.end as usize], range)
+            })
+            .collect();
+        let exact = nf.saturating_mul(mesh.vertices.len()) <= EXACT_WORK;
+        let candidates: Vec<Vec<(u32, Side)>> = if mode == VisibilityMode::Centroid {
+            Vec::new()
+        } else {
+            (0..patches.len())
+                .into_par_iter()
+                .map(|q| {
+                    (0..patches.len() as u32)
+                        .filter_map(|p| {
+                            let (q_faces, p_faces) = (&patches[q].faces, &patches[p as usize].faces);
+                            if !may_block(&geoms, q_faces, p_faces, tol) {
+                                return None;
                             }
-                            clusters_of_tris[c as usize].iter().any(|&t| {
-                                face_of[t as usize] != fi as u32
-                                    && corners[t as usize].iter().any(|v| n.dot(*v) - d > tol)
-                            })
+                            Some((p, relation(&geoms, q_faces, p_faces, tol, exact)))
                         })
-                        .collect();
-                    Some(list)
+                        .collect()
                 })
-                .collect();
-            let total: usize = per_face.iter().flatten().map(Vec::len).sum();
-            let mut c = Candidates {
-                offsets: vec![0],
-                items: Vec::new(),
-                all: vec![false; per_face.len()],
-            };
-            for (fi, list) in per_face.into_iter().enumerate() {
-                match list {
-                    Some(l) if total <= MAX_CANDIDATE_ENTRIES => c.items.extend(l),
-                    _ => c.all[fi] = true,
-                }
-                c.offsets.push(c.items.len() as u32);
-            }
-            c
+                .collect()
         };
-        let front = side_lists(1.0);
-        let back = side_lists(-1.0);
+        if mode == VisibilityMode::Centroid {
+            for g in &mut geoms {
+                g.vertices = Vec::new();
+            }
+        }
         Visibility {
             mode,
             occluder,
             corners,
             faces: geoms,
-            clusters,
-            front,
-            back,
+            patches,
+            candidates,
+            tol,
         }
     }
 
-    /// True when some possible occluder of `face` may lie along `dir`.
-    fn may_block(&self, face: usize, cands: Option<&[u32]>, dir: DVec3) -> bool {
-        let Some(cands) = cands else { return true };
-        let f = &self.faces[face];
-        cands.iter().any(|&c| {
-            let (cc, rc) = self.clusters[c as usize];
-            let w = cc - f.centroid;
-            let t = w.dot(dir).max(0.0);
-            let reach = f.radius + rc;
-            (w - dir * t).length_squared() < reach * reach
-        })
+    /// Occluder patches that may block receiver patch `q` along `d` (patch-level proofs).
+    fn flag_patches(&self, q: u32, d: DVec3) -> Vec<u32> {
+        let qp = &self.patches[q as usize];
+        self.candidates[q as usize]
+            .iter()
+            .filter(|&&(p, side)| {
+                let pp = &self.patches[p as usize];
+                reaches(qp.centre, qp.radius, pp.centre, pp.radius, d) && !cone_clear(side, pp, d)
+            })
+            .map(|&(p, _)| p)
+            .collect()
     }
 
-    /// Area of `face` (m²) that is both seen and lit by the Sun, and both seen and lit by
-    /// the earthshine direction, on side `side` (+1 front, −1 back); plus rays cast.
-    /// `min_area` is the leaf size (m²) below which refinement stops.
-    pub fn visible_area(&self, face: usize, side: f64, dirs: &Uncertain, min_area: f64) -> (f64, f64, u64) {
+    /// Face-level: collects into `out` the faces of the flagged patches that may block
+    /// `face` (side normal `n`) along `d`.
+    fn face_blockers(&self, face: usize, n: DVec3, flagged: &[u32], d: DVec3, out: &mut Vec<Blocker>) {
+        let f = &self.faces[face];
+        for &p in flagged {
+            for g in self.patches[p as usize].faces.clone() {
+                let g = g as usize;
+                if g == face {
+                    continue;
+                }
+                let o = &self.faces[g];
+                // the occluder must reach in front of the face's lit/seen side
+                if n.dot(o.centroid - f.centroid) + o.radius <= self.tol {
+                    continue;
+                }
+                if !reaches(f.centroid, f.radius, o.centroid, o.radius, d) {
+                    continue;
+                }
+                let blocker = Blocker {
+                    centre: o.centroid,
+                    radius: o.radius,
+                    normal: o.normal,
+                };
+                // half-space proof with the face's own vertices
+                if blocker.half_space_clear(d, &f.vertices, self.tol) {
+                    continue;
+                }
+                out.push(blocker);
+            }
+        }
+    }
+
+    /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on
+    /// side `side` (+1 front, −1 back); plus the number of rays cast. `min_area` is the
+    /// leaf size (m²) below which refinement stops.
+    pub fn visible_area(
+        &self,
+        cache: &mut Cache,
+        face: usize,
+        side: f64,
+        dirs: &Uncertain,
+        min_area: f64,
+    ) -> (f64, f64, u64) {
         let f = &self.faces[face];
         let n = f.normal * side;
         // Earthshine's representative direction may lie below the face while parts of
-        // the Earth light it: no meaningful ray then, count it as unshadowed.
+        // the Earth light it: no meaningful ray then; count it as unshadowed.
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-        let mut ctx = Sampler {
-            vis: self,
-            n,
-            view: dirs.view,
-            sun: dirs.sun,
-            earth,
-            check_view: true,
-            check_sun: dirs.sun.is_some(),
-            check_earth: earth.is_some(),
-            min_area,
-            rays: 0,
-            a_sun: 0.0,
-            a_earth: 0.0,
-        };
         let area_of = |t: &[DVec3; 3]| 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
-        let full_area: f64 = f.triangles.iter().map(|&t| area_of(&self.corners[t as usize])).sum();
+        let directions = [Some(dirs.view), dirs.sun, earth];
+        let mut s = Sampler::new(&self.occluder, n, directions, min_area);
         if self.mode == VisibilityMode::Centroid {
             for &t in &f.triangles {
                 let c = &self.corners[t as usize];
-                let bits = ctx.eval((c[0] + c[1] + c[2]) / 3.0);
+                let bits = s.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
                 let a = area_of(c);
-                ctx.a_sun += a * (bits & 1) as f64;
-                ctx.a_earth += a * ((bits >> 1) & 1) as f64;
+                s.a_sun += a * (bits & 1) as f64;
+                s.a_earth += a * ((bits >> 1) & 1) as f64;
             }
-            return (ctx.a_sun, ctx.a_earth, ctx.rays);
+            return (s.a_sun, s.a_earth, s.rays);
         }
-        let cands = if side > 0.0 { self.front.of(face) } else { self.back.of(face) };
-        ctx.check_view = self.may_block(face, cands, dirs.view);
-        ctx.check_sun = ctx.sun.is_some_and(|d| self.may_block(face, cands, d));
-        ctx.check_earth = ctx.earth.is_some_and(|d| self.may_block(face, cands, d));
-        if !ctx.check_view && !ctx.check_sun && !ctx.check_earth {
+        // Patch- then face-level proofs; what survives are the possible blockers.
+        let key = (f.patch, side > 0.0);
+        if cache.key != Some(key) {
+            cache.key = Some(key);
+            cache.flagged = [None, None, None];
+        }
+        for (k, d) in directions.iter().enumerate() {
+            let Some(d) = *d else { continue };
+            let flagged = cache.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
+            if !flagged.is_empty() {
+                self.face_blockers(face, n, flagged, d, &mut s.blockers[k]);
+            }
+        }
+        let full_area: f64 = f.triangles.iter().map(|&t| area_of(&self.corners[t as usize])).sum();
+        if s.blockers.iter().all(Vec::is_empty) {
             return (full_area, full_area, 0);
         }
         for &t in &f.triangles {
-            let [a, b, c] = self.corners[t as usize];
-            let (va, vb, vc) = (ctx.eval(a), ctx.eval(b), ctx.eval(c));
-            ctx.refine([a, b, c], [va, vb, vc], area_of(&[a, b, c]), 0);
+            let corners = self.corners[t as usize];
+            s.refine(corners, None, area_of(&corners), 0, self.tol);
         }
-        (ctx.a_sun, ctx.a_earth, ctx.rays)
+        (s.a_sun, s.a_earth, s.rays)
+    }
+}
+
+/// A face that may cast a shadow on (or hide) the face being sampled.
+#[derive(Debug, Clone, Copy)]
+struct Blocker {
+    centre: DVec3,
+    radius: f64,
+    normal: DVec3,
+}
+
+impl Blocker {
+    /// Half-space proof: all `points` lie on the side of the blocker's plane that `d`
+    /// points away from, so rays from them along `d` never cross the plane.
+    #[inline]
+    fn half_space_clear(&self, d: DVec3, points: &[DVec3], tol: f64) -> bool {
+        let dn = d.dot(self.normal);
+        if dn == 0.0 {
+            return false;
+        }
+        let s = dn.signum();
+        points.iter().all(|v| s * self.normal.dot(*v - self.centre) >= -tol)
+    }
+}
+
+/// Does the sphere (c_o, r_o) meet the half-infinite cylinder swept by the sphere
+/// (c_f, r_f) along unit `d`?
+#[inline]
+fn reaches(c_f: DVec3, r_f: f64, c_o: DVec3, r_o: f64, d: DVec3) -> bool {
+    let w = c_o - c_f;
+    let t = w.dot(d).max(0.0);
+    let reach = r_f + r_o;
+    (w - d * t).length_squared() < reach * reach
+}
+
+/// Patch-level half-space proof: every occluder plane faces away along `d` from a
+/// receiver wholly in front of them all (or towards, from one wholly behind).
+#[inline]
+fn cone_clear(side: Side, p: &Patch, d: DVec3) -> bool {
+    match side {
+        Side::Front => d.dot(p.axis) > p.sin_half,
+        Side::Behind => -d.dot(p.axis) > p.sin_half,
+        Side::Mixed => false,
+    }
+}
+
+/// Can some face of `p_faces` reach the lit/seen side of some face of `q_faces`?
+fn may_block(geoms: &[FaceGeom], q_faces: &Range<u32>, p_faces: &Range<u32>, tol: f64) -> bool {
+    q_faces.clone().any(|fi| {
+        let f = &geoms[fi as usize];
+        p_faces.clone().any(|gi| {
+            if gi == fi {
+                return false;
+            }
+            let g = &geoms[gi as usize];
+            let s = f.normal.dot(g.centroid - f.centroid);
+            s + g.radius > tol || (f.two_sided && -s + g.radius > tol)
+        })
+    })
+}
+
+/// Where the receiver faces lie relative to every plane of the occluder faces.
+fn relation(geoms: &[FaceGeom], q_faces: &Range<u32>, p_faces: &Range<u32>, tol: f64, exact: bool) -> Side {
+    let (mut front, mut behind) = (true, true);
+    for gi in p_faces.clone() {
+        let g = &geoms[gi as usize];
+        for fi in q_faces.clone() {
+            let f = &geoms[fi as usize];
+            if exact {
+                for v in &f.vertices {
+                    let s = g.normal.dot(*v - g.centroid);
+                    front &= s >= -tol;
+                    behind &= s <= tol;
+                }
+            } else {
+                let s = g.normal.dot(f.centroid - g.centroid);
+                front &= s - f.radius >= -tol;
+                behind &= s + f.radius <= tol;
+            }
+            if !front && !behind {
+                return Side::Mixed;
+            }
+        }
+    }
+    if front {
+        Side::Front
+    } else if behind {
+        Side::Behind
+    } else {
+        Side::Mixed
+    }
+}
+
+fn patch_of(faces: &[FaceGeom], range: Range<u32>) -> Patch {
+    let pts = || faces.iter().flat_map(|f| [f.centroid - DVec3::splat(f.radius), f.centroid + DVec3::splat(f.radius)]);
+    let (lo, hi) = pts().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
+        (lo.min(p), hi.max(p))
+    });
+    let centre = 0.5 * (lo + hi);
+    let radius = faces.iter().map(|f| f.centroid.distance(centre) + f.radius).fold(0.0, f64::max);
+    let sum: DVec3 = faces.iter().map(|f| f.normal).sum();
+    let (axis, sin_half) = if sum.length_squared() < 1e-12 {
+        (DVec3::Z, 2.0)
+    } else {
+        let axis = sum.normalize();
+        let min_cos = faces.iter().map(|f| f.normal.dot(axis)).fold(1.0, f64::min);
+        if min_cos <= 0.0 {
+            (axis, 2.0) // half-angle of 90° or more: the cone proves nothing
+        } else {
+            // sin of the half-angle, padded by a hair for rounding
+            (axis, (1.0 - min_cos * min_cos).max(0.0).sqrt() + 1e-12)
+        }
+    };
+    Patch {
+        centre,
+        radius,
+        axis,
+        sin_half,
+        faces: range,
     }
 }
 
 /// Adaptive sampler state for one face.
 struct Sampler<'a> {
-    vis: &'a Visibility,
+    occluder: &'a Occluder,
     n: DVec3,
-    view: DVec3,
-    sun: Option<DVec3>,
-    earth: Option<DVec3>,
-    check_view: bool,
-    check_sun: bool,
-    check_earth: bool,
+    /// View, sun and earthshine directions (sun/earth absent when they do not light the face).
+    dirs: [Option<DVec3>; 3],
+    /// Possible blockers per direction; an empty list means the direction is clear.
+    blockers: [Vec<Blocker>; 3],
     min_area: f64,
     rays: u64,
     a_sun: f64,
     a_earth: f64,
 }
 
-impl Sampler<'_> {
-    /// Bit 0: seen and sunlit; bit 1: seen and earthlit (or earthshine unshadowed).
-    #[inline]
-    fn eval(&mut self, p: DVec3) -> u8 {
-        let occ = &self.vis.occluder;
-        if self.check_view {
-            self.rays += 1;
-            if !occ.is_clear(p, self.n, self.view) {
-                return 0;
-            }
+impl<'a> Sampler<'a> {
+    fn new(occluder: &'a Occluder, n: DVec3, dirs: [Option<DVec3>; 3], min_area: f64) -> Self {
+        Sampler {
+            occluder,
+            n,
+            dirs,
+            blockers: Default::default(),
+            min_area,
+            rays: 0,
+            a_sun: 0.0,
+            a_earth: 0.0,
         }
-        let mut bits = 0;
-        if let Some(s) = self.sun {
-            let lit = if self.check_sun {
-                self.rays += 1;
-                occ.is_clear(p, self.n, s)
-            } else {
-                true
-            };
-            bits |= lit as u8;
-        }
-        match self.earth {
-            Some(e) => {
-                let lit = if self.check_earth {
-                    self.rays += 1;
-                    occ.is_clear(p, self.n, e)
-                } else {
-                    true
-                };
-                bits |= (lit as u8) << 1;
-            }
-            None => bits |= 2,
-        }
-        bits
     }
 
-    fn refine(&mut self, p: [DVec3; 3], v: [u8; 3], area: f64, depth: u32) {
-        let m = (p[0] + p[1] + p[2]) / 3.0;
-        let vm = self.eval(m);
-        let uniform = v[0] == vm && v[1] == vm && v[2] == vm;
-        // Big triangles of an uncertain face are split at least twice, so an occluder
-        // whose shadow falls between the first samples is still likely to be seen.
-        let forced = depth < 2 && area > 16.0 * self.min_area;
-        if depth >= MAX_DEPTH || area <= self.min_area || (uniform && !forced) {
-            // Leaf: corners weigh 1/6 each, the centroid 1/2 (exact for linear fields).
-            for bit in 0..2 {
-                let c = v.iter().map(|x| ((x >> bit) & 1) as f64).sum::<f64>() / 6.0 + ((vm >> bit) & 1) as f64 * 0.5;
-                if bit == 0 {
-                    self.a_sun += c * area;
-                } else {
-                    self.a_earth += c * area;
+    /// Bit 0: seen and sunlit; bit 1: seen and earthlit (or earthshine unshadowed).
+    /// Rays are cast only for the directions in `check`.
+    #[inline]
+    fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
+        let mut clear = [true; 3];
+        for k in 0..3 {
+            if let (true, Some(d)) = (check[k], self.dirs[k]) {
+                self.rays += 1;
+                clear[k] = self.occluder.is_clear(p, self.n, d);
+                if k == 0 && !clear[0] {
+                    return 0; // hidden from the observer: nothing else matters
                 }
             }
+        }
+        let sun = self.dirs[1].is_some() && clear[1];
+        (sun as u8) | ((clear[2] as u8) << 1)
+    }
+
+    /// Refines triangle `p`. `values` are corner samples taken by the parent (with its
+    /// checks, a superset of this piece's); `None` means take them here.
+    fn refine(&mut self, p: [DVec3; 3], values: Option<[u8; 3]>, area: f64, depth: u32, tol: f64) {
+        let m = (p[0] + p[1] + p[2]) / 3.0;
+        let radius = p.iter().map(|q| q.distance(m)).fold(0.0, f64::max);
+        // Which directions still have a blocker that can reach this piece, and the
+        // smallest such blocker (its shadow may be narrow).
+        let mut check = [false; 3];
+        let mut feature = f64::INFINITY;
+        for k in 0..3 {
+            let Some(d) = self.dirs[k] else { continue };
+            for b in &self.blockers[k] {
+                if reaches(m, radius, b.centre, b.radius, d) && !b.half_space_clear(d, &p, tol) {
+                    check[k] = true;
+                    feature = feature.min(b.radius);
+                }
+            }
+        }
+        if check == [false; 3] {
+            // proven clear: seen, and lit by whatever lights the face
+            self.a_sun += if self.dirs[1].is_some() { area } else { 0.0 };
+            self.a_earth += area;
+            return;
+        }
+        let v = match values {
+            Some(v) => v,
+            None => [self.eval(p[0], check), self.eval(p[1], check), self.eval(p[2], check)],
+        };
+        let vm = self.eval(m, check);
+        let uniform = v[0] == vm && v[1] == vm && v[2] == vm;
+        // Pieces wider than the smallest possible blocker are split even when their
+        // samples agree (a narrow shadow could fall between them), down to the
+        // tolerance's leaf size, below which a missed sliver is within the error budget.
+        let forced = area > self.min_area && 2.0 * radius > feature;
+        if depth >= MAX_DEPTH || area <= self.min_area || (uniform && !forced) {
+            // Leaf: corners weigh 1/6 each, the centroid 1/2 (exact for linear fields).
+            let frac = |bit: u8| {
+                v.iter().map(|x| ((x >> bit) & 1) as f64).sum::<f64>() / 6.0 + ((vm >> bit) & 1) as f64 * 0.5
+            };
+            self.a_sun += frac(0) * area;
+            self.a_earth += frac(1) * area;
             return;
         }
         let ab = 0.5 * (p[0] + p[1]);
         let bc = 0.5 * (p[1] + p[2]);
         let ca = 0.5 * (p[2] + p[0]);
-        let (vab, vbc, vca) = (self.eval(ab), self.eval(bc), self.eval(ca));
+        let (vab, vbc, vca) = (self.eval(ab, check), self.eval(bc, check), self.eval(ca, check));
         let q = 0.25 * area;
-        self.refine([p[0], ab, ca], [v[0], vab, vca], q, depth + 1);
-        self.refine([ab, p[1], bc], [vab, v[1], vbc], q, depth + 1);
-        self.refine([ca, bc, p[2]], [vca, vbc, v[2]], q, depth + 1);
-        self.refine([ab, bc, ca], [vab, vbc, vca], q, depth + 1);
+        self.refine([p[0], ab, ca], Some([v[0], vab, vca]), q, depth + 1, tol);
+        self.refine([ab, p[1], bc], Some([vab, v[1], vbc]), q, depth + 1, tol);
+        self.refine([ca, bc, p[2]], Some([vca, vbc, v[2]]), q, depth + 1, tol);
+        self.refine([ab, bc, ca], Some([vab, vbc, vca]), q, depth + 1, tol);
     }
-}
-
-/// Groups triangles into at most [`MAX_CLUSTERS`] spatially coherent clusters
-/// (one per triangle when there are few).
-fn cluster_triangles(corners: &[[DVec3; 3]]) -> Vec<Vec<u32>> {
-    let n = corners.len();
-    if n <= MAX_CLUSTERS {
-        return (0..n as u32).map(|t| vec![t]).collect();
-    }
-    // Morton order of centroids, then equal chunks.
-    let cents: Vec<DVec3> = corners.iter().map(|c| (c[0] + c[1] + c[2]) / 3.0).collect();
-    let lo = cents.iter().fold(DVec3::splat(f64::INFINITY), |a, b| a.min(*b));
-    let hi = cents.iter().fold(DVec3::splat(f64::NEG_INFINITY), |a, b| a.max(*b));
-    let ext = (hi - lo).max(DVec3::splat(1e-300));
-    let mut order: Vec<(u64, u32)> = cents
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let q = ((*c - lo) / ext * 1023.0).as_uvec3();
-            (morton3(q.x, q.y, q.z), i as u32)
-        })
-        .collect();
-    order.sort_unstable();
-    let chunk = n.div_ceil(MAX_CLUSTERS);
-    order.chunks(chunk).map(|c| c.iter().map(|&(_, i)| i).collect()).collect()
-}
-
-fn morton3(x: u32, y: u32, z: u32) -> u64 {
-    fn spread(v: u32) -> u64 {
-        let mut x = v as u64 & 0x3ff;
-        x = (x | (x << 16)) & 0x30000ff;
-        x = (x | (x << 8)) & 0x300f00f;
-        x = (x | (x << 4)) & 0x30c30c3;
-        x = (x | (x << 2)) & 0x9249249;
-        x
-    }
-    spread(x) | (spread(y) << 1) | (spread(z) << 2)
-}
-
-fn bounding_sphere(points: impl Iterator<Item = DVec3> + Clone) -> (DVec3, f64) {
-    let (lo, hi) = points.clone().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), p| (lo.min(p), hi.max(p)),
-    );
-    let c = 0.5 * (lo + hi);
-    let r = points.map(|p| p.distance(c)).fold(0.0, f64::max);
-    (c, r)
 }

@@ -464,43 +464,69 @@ impl Jobs {
         .await
         .unwrap_or_else(|e| Err(format!("the computation stopped: {e}")));
 
-        let (result, final_state) = {
-            let mut t = self.table();
-            let Some(e) = t.get_mut(id) else { return };
-            if e.rec.state != JobState::Running {
-                return; // cancelled (and persisted) while running
-            }
-            match outcome {
-                Ok(Some((json, n))) => {
-                    e.rec.state = JobState::Done;
-                    e.rec.epochs_done = n;
-                    e.rec.finished_ms = Some(now_ms());
-                    self.metrics.add_epochs("job", n as u64);
-                    (Some(json), JobState::Done)
-                }
-                // Stopped by shutdown: stays `running` on disk, so it runs again on restart.
-                Ok(None) => return,
-                Err(msg) => {
-                    e.rec.state = JobState::Failed;
-                    e.rec.error = Some(msg);
-                    e.rec.epochs_done = e.progress.done();
-                    e.rec.finished_ms = Some(now_ms());
-                    (None, JobState::Failed)
-                }
-            }
+        let outcome = match outcome {
+            Ok(Some(done)) => Ok(done),
+            // Stopped by shutdown: stays `running` on disk, so it runs again on restart.
+            Ok(None) => return,
+            Err(msg) => Err(msg),
         };
         let me = self.clone();
         let key = id.to_string();
-        let written =
-            tokio::task::spawn_blocking(move || me.persist(&key, result.as_deref())).await;
-        if !matches!(written, Ok(Ok(()))) {
-            // The result could not be stored: report the job failed rather than done
-            // with nothing to serve (on disk it is still `running` and will run again).
-            if let Some(e) = self.table().get_mut(id) {
-                e.rec.state = JobState::Failed;
-                e.rec.error = Some(format!("could not store the {} result", final_state.name()));
+        let written = tokio::task::spawn_blocking(move || me.finish(&key, outcome)).await;
+        let failure = match written {
+            Ok(Ok(())) => None,
+            Ok(Err(e)) => Some(e.to_string()),
+            Err(e) => Some(e.to_string()),
+        };
+        if let Some(e) = failure {
+            // The outcome could not be stored: say so rather than serve nothing (on disk
+            // the job is still `running`, so it runs again after a restart).
+            if let Some(e2) = self.table().get_mut(id) {
+                if e2.rec.state == JobState::Running {
+                    e2.rec.state = JobState::Failed;
+                    e2.rec.error = Some(format!("could not store the outcome: {e}"));
+                }
             }
         }
+    }
+
+    /// Stores a run's outcome, then shows it: a job is `done` in the table only once its
+    /// result is committed, so a client never sees `done` without a result to fetch.
+    fn finish(
+        &self,
+        id: &str,
+        outcome: Result<(Vec<u8>, usize), String>,
+    ) -> Result<(), StoreError> {
+        let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
+        let mut rec = match self.table().get(id) {
+            // Not running any more: cancelled (and persisted) meanwhile.
+            Some(e) if e.rec.state == JobState::Running => e.rec.clone(),
+            _ => return Ok(()),
+        };
+        rec.finished_ms = Some(now_ms());
+        let result = match outcome {
+            Ok((json, n)) => {
+                rec.state = JobState::Done;
+                rec.epochs_done = n;
+                Some(json)
+            }
+            Err(msg) => {
+                rec.state = JobState::Failed;
+                rec.error = Some(msg);
+                rec.epochs_done = self.table().get(id).map_or(0, |e| e.progress.done());
+                None
+            }
+        };
+        self.store.update(&rec, result.as_deref())?;
+        if rec.state == JobState::Done {
+            self.metrics.add_epochs("job", rec.epochs_done as u64);
+        }
+        if let Some(e) = self.table().get_mut(id) {
+            if e.rec.state == JobState::Running {
+                e.rec = rec;
+            }
+        }
+        Ok(())
     }
 
     /// Removes finished jobs older than the time to live.

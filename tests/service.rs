@@ -1,0 +1,340 @@
+//! The HTTP service, in process on a loopback port, spoken to over real HTTP.
+//!
+//! The truths checked here are the engine's own direct results (the service must add
+//! nothing and lose nothing: JSON round-trips f64 exactly, so results are compared for
+//! equality), the committed OpenAPI file, and the documented error shapes.
+
+mod service_support;
+
+use glint::service::openapi::spec_json;
+use service_support::*;
+use std::time::Duration;
+
+const JSON: (&str, &str) = ("Content-Type", "application/json");
+
+/// Every error answer has the documented shape: a JSON object with an `error` string and,
+/// when given, a `field` string.
+fn assert_error(r: &Reply, status: u16, field: Option<&str>) {
+    assert_eq!(r.status, status, "{}", r.text());
+    assert!(
+        r.header("content-type").unwrap_or("").starts_with("application/json"),
+        "{:?}",
+        r.headers
+    );
+    let v = r.json();
+    assert!(v["error"].as_str().is_some_and(|s| !s.is_empty()), "{v}");
+    if let Some(f) = field {
+        assert_eq!(v["field"].as_str(), Some(f), "{v}");
+    }
+}
+
+#[test]
+fn lightcurve_json_and_csv_equal_the_engine() {
+    let server = Server::start("sync", |_| {});
+    let req = scene_request("box-wing", 12);
+    let want = direct(&req);
+
+    let r = post_json(server.addr, "/v1/lightcurves", &req);
+    assert_eq!(r.status, 200, "{}", r.text());
+    assert_eq!(r.header("content-type"), Some("application/json"));
+    let got: glint::Response = serde_json::from_slice(&r.body).unwrap();
+    // Same engine, same input: bit-identical epochs (serde_json round-trips f64 exactly).
+    assert_eq!(got.epochs, want.epochs);
+    assert_eq!(got.summary.triangles, want.summary.triangles);
+    assert_eq!(got.summary.rays, want.summary.rays);
+
+    let r = http(
+        server.addr,
+        "POST",
+        "/v1/lightcurves",
+        &[JSON, ("Accept", "text/csv")],
+        req.as_bytes(),
+    );
+    assert_eq!(r.status, 200, "{}", r.text());
+    assert!(r.header("content-type").unwrap().starts_with("text/csv"));
+    assert_eq!(r.text(), glint::report::csv::to_csv(&want));
+
+    // The request counts and epochs show up in the metrics.
+    let m = get(server.addr, "/metrics").text();
+    assert!(
+        m.contains(&format!("glint_epochs_computed_total{{kind=\"sync\"}} {}", 2 * 12)),
+        "{m}"
+    );
+    assert!(
+        m.contains("glint_http_requests_total{method=\"POST\",route=\"/v1/lightcurves\",status=\"200\"} 2"),
+        "{m}"
+    );
+}
+
+#[test]
+fn job_submitted_polled_fetched_and_removed() {
+    let server = Server::start("job", |_| {});
+    let req = scene_request("box-wing", 40);
+    let want = direct(&req);
+
+    let r = post_json(server.addr, "/v1/jobs", &req);
+    assert_eq!(r.status, 202, "{}", r.text());
+    let status = r.json();
+    let id = status["id"].as_str().unwrap().to_string();
+    assert_eq!(r.header("location"), Some(format!("/v1/jobs/{id}").as_str()));
+    assert_eq!(status["epochs_total"], 40);
+    assert!(status["created_at"].as_str().unwrap().ends_with('Z'));
+
+    let s = wait_final(server.addr, &id, &[], Duration::from_secs(120));
+    assert_eq!(s["state"], "done", "{s}");
+    assert_eq!(s["epochs_done"], 40);
+    assert_eq!(s["percent"], 100.0);
+    assert_eq!(s["attempts"], 1);
+    for k in ["started_at", "finished_at", "expires_at"] {
+        assert!(s[k].is_string(), "{k} missing in {s}");
+    }
+    assert_eq!(s["result_url"], format!("/v1/jobs/{id}/result"));
+
+    let r = get(server.addr, &format!("/v1/jobs/{id}/result"));
+    assert_eq!(r.status, 200, "{}", r.text());
+    let got: glint::Response = serde_json::from_slice(&r.body).unwrap();
+    assert_eq!(got.epochs, want.epochs);
+
+    let r = http(
+        server.addr,
+        "GET",
+        &format!("/v1/jobs/{id}/result"),
+        &[("Accept", "text/csv")],
+        b"",
+    );
+    assert_eq!(r.text(), glint::report::csv::to_csv(&want));
+
+    // No renderer output in this request: no thumbnail for any epoch.
+    let r = get(server.addr, &format!("/v1/jobs/{id}/thumbnails/0.png"));
+    assert_error(&r, 404, Some("epoch"));
+
+    let list = get(server.addr, "/v1/jobs?limit=10").json();
+    assert_eq!(list.as_array().unwrap().len(), 1);
+    assert_eq!(list[0]["id"], id.as_str());
+    assert_eq!(get(server.addr, "/v1/jobs?state=queued").json(), serde_json::json!([]));
+    assert_error(&get(server.addr, "/v1/jobs?limit=0"), 400, Some("limit"));
+    assert_error(&get(server.addr, "/v1/jobs?state=sleeping"), 400, None);
+
+    let m = get(server.addr, "/metrics").text();
+    assert!(m.contains("glint_jobs{state=\"done\"} 1"), "{m}");
+    assert!(m.contains("glint_epochs_computed_total{kind=\"job\"} 40"), "{m}");
+
+    // A finished job is removed by DELETE, result and all.
+    let r = http(server.addr, "DELETE", &format!("/v1/jobs/{id}"), &[], b"");
+    assert_eq!(r.status, 204, "{}", r.text());
+    assert_error(&get(server.addr, &format!("/v1/jobs/{id}")), 404, Some("id"));
+    assert_error(&get(server.addr, &format!("/v1/jobs/{id}/result")), 404, Some("id"));
+}
+
+#[test]
+fn cancellation_and_a_full_service() {
+    // One computation slot and no waiting room: a running job makes the service busy.
+    let server = Server::start("cancel", |c| {
+        c.limits.max_concurrent = 1;
+        c.limits.max_queued = 0;
+        c.limits.max_running_jobs = 1;
+    });
+    // Long enough (tens of seconds in a debug build) to be cancelled mid-run.
+    let big = scene_request_repeated("box-wing", 40_000);
+    let a = post_json(server.addr, "/v1/jobs", &big).json()["id"].as_str().unwrap().to_string();
+    let b = post_json(server.addr, "/v1/jobs", &big).json()["id"].as_str().unwrap().to_string();
+
+    // Wait until `a` is running and has computed something.
+    let start = std::time::Instant::now();
+    loop {
+        let s = get(server.addr, &format!("/v1/jobs/{a}")).json();
+        if s["state"] == "running" && s["epochs_done"].as_u64().unwrap() > 0 {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(60), "job never ran: {s}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // `b` waits behind `a` (one job at a time).
+    assert_eq!(get(server.addr, &format!("/v1/jobs/{b}")).json()["state"], "queued");
+
+    // The only slot is taken: a light curve is turned away with Retry-After.
+    let small = scene_request("plate", 2);
+    let r = post_json(server.addr, "/v1/lightcurves", &small);
+    assert_error(&r, 503, None);
+    assert_eq!(r.header("retry-after"), Some("1"));
+    // …but bad input still gets its 4xx, not the 503: validation comes first.
+    assert_error(&post_json(server.addr, "/v1/lightcurves", "{}"), 422, None);
+
+    // Cancel the queued one, then the running one.
+    for id in [&b, &a] {
+        let r = http(server.addr, "DELETE", &format!("/v1/jobs/{id}"), &[], b"");
+        assert_eq!(r.status, 200, "{}", r.text());
+        assert_eq!(r.json()["state"], "cancelled");
+    }
+    let s = get(server.addr, &format!("/v1/jobs/{a}")).json();
+    let done = s["epochs_done"].as_u64().unwrap();
+    assert!(done > 0 && done < 40_000, "{s}");
+    assert_error(&get(server.addr, &format!("/v1/jobs/{a}/result")), 409, None);
+
+    // The slot comes back once the engine stops at its next epoch.
+    let start = std::time::Instant::now();
+    loop {
+        let r = post_json(server.addr, "/v1/lightcurves", &small);
+        if r.status == 200 {
+            break;
+        }
+        assert_error(&r, 503, None);
+        assert!(start.elapsed() < Duration::from_secs(30), "slot never freed");
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    // Both stay cancelled: nothing runs them again.
+    std::thread::sleep(Duration::from_millis(300));
+    for id in [&a, &b] {
+        assert_eq!(get(server.addr, &format!("/v1/jobs/{id}")).json()["state"], "cancelled");
+    }
+}
+
+#[test]
+fn every_error_class_has_the_json_shape() {
+    let server = Server::start("errors", |c| {
+        c.limits.max_body_bytes = 64 * 1024;
+        c.limits.max_sync_epochs = 10;
+        c.limits.max_job_epochs = 20;
+        c.limits.max_triangles = 100;
+    });
+    let addr = server.addr;
+    let ok = scene_request("plate", 3);
+
+    // 415: no or wrong content type.
+    assert_error(&http(addr, "POST", "/v1/lightcurves", &[], ok.as_bytes()), 415, Some("Content-Type"));
+    assert_error(
+        &http(addr, "POST", "/v1/jobs", &[("Content-Type", "text/plain")], ok.as_bytes()),
+        415,
+        Some("Content-Type"),
+    );
+    // 400: broken JSON, empty body.
+    assert_error(&post_json(addr, "/v1/lightcurves", "{\"object\": "), 400, None);
+    assert_error(&post_json(addr, "/v1/lightcurves", ""), 400, None);
+    // 422: unknown field, wrong type, bad value — each naming its field.
+    let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
+    v["colour"] = "red".into();
+    assert_error(&post_json(addr, "/v1/lightcurves", &v.to_string()), 422, Some("colour"));
+    let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
+    v["epochs"][1]["sun"] = "up".into();
+    assert_error(&post_json(addr, "/v1/lightcurves", &v.to_string()), 422, Some("epochs[1].sun"));
+    let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
+    v["epochs"][2]["observer"] = serde_json::json!([0.0, 0.0, 0.0]);
+    assert_error(&post_json(addr, "/v1/lightcurves", &v.to_string()), 422, Some("epochs[2].observer"));
+    // 413: body over the byte limit; epochs over the synchronous limit (a job takes them);
+    // epochs over the job limit; a mesh over the triangle limit.
+    let huge = format!("{{\"pad\": \"{}\"}}", "x".repeat(100 * 1024));
+    assert_error(&post_json(addr, "/v1/lightcurves", &huge), 413, None);
+    assert_error(&post_json(addr, "/v1/jobs", &huge), 413, None);
+    let eleven = scene_request("plate", 11);
+    assert_error(&post_json(addr, "/v1/lightcurves", &eleven), 413, Some("epochs"));
+    assert_eq!(post_json(addr, "/v1/jobs", &eleven).status, 202);
+    assert_error(&post_json(addr, "/v1/jobs", &scene_request("plate", 21)), 413, Some("epochs"));
+    let sphere = scene_request("sphere", 1); // 1280 triangles
+    let r = post_json(addr, "/v1/lightcurves", &sphere);
+    assert_error(&r, 413, None);
+    // 404: unknown route, job, scene; 405 on a known route.
+    assert_error(&get(addr, "/v2/nothing"), 404, None);
+    assert_error(&get(addr, "/v1/jobs/not-a-job"), 404, Some("id"));
+    assert_error(&http(addr, "DELETE", "/v1/jobs/not-a-job", &[], b""), 404, Some("id"));
+    assert_error(&get(addr, "/v1/scenes/teapot"), 404, Some("name"));
+    let r = get(addr, "/v1/lightcurves");
+    assert_error(&r, 405, None);
+    assert_eq!(r.header("allow"), Some("POST"));
+    // Still healthy after all that.
+    assert_eq!(get(addr, "/healthz").status, 200);
+}
+
+#[test]
+fn bearer_token_when_set_and_loopback_when_not() {
+    let server = Server::start("auth", |c| c.token = Some("s3cret".into()));
+    let addr = server.addr;
+    assert_eq!(get(addr, "/healthz").status, 200);
+    assert_eq!(get(addr, "/readyz").status, 200);
+    for path in ["/v1/scenes", "/v1/jobs", "/metrics", "/openapi.json"] {
+        let r = get(addr, path);
+        assert_error(&r, 401, Some("Authorization"));
+        assert_eq!(r.header("www-authenticate"), Some("Bearer"));
+        assert_error(&http(addr, "GET", path, &[("Authorization", "Bearer nope")], b""), 401, None);
+        let r = http(addr, "GET", path, &[("Authorization", "Bearer s3cret")], b"");
+        assert_eq!(r.status, 200, "{path}: {}", r.text());
+    }
+    let req = scene_request("plate", 2);
+    assert_error(&post_json(addr, "/v1/lightcurves", &req), 401, None);
+    let r = http(
+        addr,
+        "POST",
+        "/v1/lightcurves",
+        &[JSON, ("Authorization", "Bearer s3cret")],
+        req.as_bytes(),
+    );
+    assert_eq!(r.status, 200, "{}", r.text());
+
+    // Without a token everything is open…
+    let open = Server::start("noauth", |_| {});
+    assert_eq!(get(open.addr, "/v1/scenes").status, 200);
+    // …which is only allowed on loopback unless explicitly accepted.
+    let rt = tokio::runtime::Runtime::new().unwrap();
+    let config = glint::service::Config {
+        addr: "0.0.0.0:0".parse().unwrap(),
+        data_dir: temp_dir("refuse"),
+        ..Default::default()
+    };
+    let err = rt.block_on(glint::service::start(config)).err().expect("refused");
+    assert!(err.to_string().contains("GLINT_API_TOKEN"), "{err}");
+}
+
+#[test]
+fn scenes_are_the_builtins_and_the_example_files() {
+    let server = Server::start("scenes", |_| {});
+    let list = get(server.addr, "/v1/scenes").json();
+    for b in glint::geometry::builtin::BUILTINS {
+        let s = list
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|s| s["name"] == b.name)
+            .unwrap_or_else(|| panic!("{} not listed", b.name));
+        assert_eq!(s["triangles"], (b.build)().triangles.len());
+        assert_eq!(s["materials"], serde_json::json!(b.material_names));
+    }
+    for name in ["box-wing", "sphere", "plate"] {
+        let r = get(server.addr, &format!("/v1/scenes/{name}"));
+        assert_eq!(r.status, 200);
+        let file = std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let want: serde_json::Value = serde_json::from_str(&file).unwrap();
+        assert_eq!(r.json(), want, "{name}");
+    }
+}
+
+#[test]
+fn docs_and_spec_are_served_and_the_spec_example_is_a_valid_request() {
+    let server = Server::start("docs", |_| {});
+    let spec = get(server.addr, "/openapi.json").json();
+    let example = spec["paths"]["/v1/lightcurves"]["post"]["requestBody"]["content"]["application/json"]["example"].clone();
+    assert!(example.is_object(), "no example in the spec");
+    let r = post_json(server.addr, "/v1/lightcurves", &example.to_string());
+    assert_eq!(r.status, 200, "{}", r.text());
+    let r = get(server.addr, "/docs/");
+    assert_eq!(r.status, 200);
+    assert!(r.text().contains("swagger"), "{}", r.text());
+}
+
+/// Regenerate with `cargo run -- openapi > openapi/openapi.json`.
+#[test]
+fn committed_openapi_matches_the_code() {
+    let path = format!("{}/openapi/openapi.json", env!("CARGO_MANIFEST_DIR"));
+    let committed = std::fs::read_to_string(&path).expect("openapi/openapi.json exists");
+    let generated = spec_json();
+    if committed != generated {
+        let line = committed
+            .lines()
+            .zip(generated.lines())
+            .position(|(a, b)| a != b)
+            .map_or(committed.lines().count().min(generated.lines().count()), |i| i);
+        panic!(
+            "openapi/openapi.json differs from the code from line {} on; regenerate it with \
+             `cargo run -- openapi > openapi/openapi.json`",
+            line + 1
+        );
+    }
+}

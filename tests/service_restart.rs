@@ -1,0 +1,116 @@
+//! Jobs survive the server process: the built binary is started, killed with SIGKILL in
+//! the middle of a job, and started again on the same data directory.
+
+mod service_support;
+
+use service_support::*;
+use std::io::{BufRead, BufReader};
+use std::net::SocketAddr;
+use std::path::Path;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+struct Proc {
+    child: Child,
+    addr: SocketAddr,
+}
+
+/// Starts `glint serve` on a free loopback port and reads the port from its first line.
+fn spawn(dir: &Path) -> Proc {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_glint"))
+        .args(["serve", "--addr", "127.0.0.1:0", "--max-running-jobs", "1", "--data-dir"])
+        .arg(dir)
+        .env_remove("GLINT_API_TOKEN")
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn glint serve");
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    let first = lines.next().expect("a first line").unwrap();
+    let addr = first
+        .split("http://")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .unwrap_or_else(|| panic!("no address in {first:?}"))
+        .parse()
+        .unwrap();
+    // Keep draining stderr so the server never blocks on a full pipe.
+    std::thread::spawn(move || for _ in lines {});
+    Proc { child, addr }
+}
+
+#[test]
+fn jobs_survive_kill_9_and_a_graceful_restart() {
+    let dir = temp_dir("restart");
+    let p = spawn(&dir);
+
+    // A finished job…
+    let small = scene_request("box-wing", 30);
+    let r = post_json(p.addr, "/v1/jobs", &small);
+    assert_eq!(r.status, 202, "{}", r.text());
+    let j1 = r.json()["id"].as_str().unwrap().to_string();
+    assert_eq!(wait_final(p.addr, &j1, &[], Duration::from_secs(120))["state"], "done");
+    let r1 = get(p.addr, &format!("/v1/jobs/{j1}/result"));
+    assert_eq!(r1.status, 200);
+
+    // …one killed mid-run, and one accepted just before the kill (queued behind it).
+    let big = scene_request_repeated("box-wing", 4000);
+    let j2 = post_json(p.addr, "/v1/jobs", &big).json()["id"].as_str().unwrap().to_string();
+    let start = Instant::now();
+    loop {
+        let s = get(p.addr, &format!("/v1/jobs/{j2}")).json();
+        if s["state"] == "running" && s["epochs_done"].as_u64().unwrap() > 0 {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(60), "never ran: {s}");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let r = post_json(p.addr, "/v1/jobs", &small);
+    assert_eq!(r.status, 202);
+    let j3 = r.json()["id"].as_str().unwrap().to_string();
+    let mut child = p.child;
+    child.kill().unwrap(); // SIGKILL: no shutdown code runs
+    child.wait().unwrap();
+
+    let p = spawn(&dir);
+    // The finished result is served unchanged, byte for byte.
+    let again = get(p.addr, &format!("/v1/jobs/{j1}/result"));
+    assert_eq!(again.status, 200);
+    assert_eq!(again.body, r1.body);
+    // The interrupted job runs again and gives the engine's answer.
+    let s = wait_final(p.addr, &j2, &[], Duration::from_secs(300));
+    assert_eq!(s["state"], "done", "{s}");
+    assert_eq!(s["attempts"], 2, "{s}");
+    let got: glint::Response = serde_json::from_slice(&get(p.addr, &format!("/v1/jobs/{j2}/result")).body).unwrap();
+    assert_eq!(got.epochs, direct(&big).epochs);
+    // The job accepted right before the kill was not lost.
+    let s = wait_final(p.addr, &j3, &[], Duration::from_secs(120));
+    assert_eq!(s["state"], "done", "{s}");
+    assert_eq!(s["attempts"], 1, "{s}");
+
+    // SIGTERM: a graceful stop with exit status 0.
+    let mut child = p.child;
+    let ok = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok);
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(start.elapsed() < Duration::from_secs(30), "no exit after SIGTERM");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert!(status.success(), "{status}");
+
+    // And once more: still all there after the graceful stop.
+    let mut p = spawn(&dir);
+    let list = get(p.addr, "/v1/jobs").json();
+    assert_eq!(list.as_array().unwrap().len(), 3, "{list}");
+    p.child.kill().unwrap();
+    p.child.wait().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -130,6 +130,13 @@ impl ImageView {
         a_sun.resize(nf, 0.0);
         a_earth.clear();
         a_earth.resize(nf, 0.0);
+        // obvhs 0.4 misses every hit along a direction with a −0.0 component (its octant
+        // test and 1/−0 = −∞ disagree): hand it +0.0, also for what would round to −0 in f32
+        let clean = |d: DVec3| {
+            DVec3::from_array(d.to_array().map(|x| if x.abs() < 1e-37 { 0.0 } else { x }))
+        };
+        let (view, sun, earth) = (clean(view), clean(sun), earth.map(clean));
+        let back = clean(-view);
         let (u, w) = orthonormal_basis(view);
         // Start the rays outside the bounding sphere, looking back along the line of sight.
         let r = self.radius.max(f64::MIN_POSITIVE) * 1.001;
@@ -151,7 +158,7 @@ impl ImageView {
                         }
                         let origin = plane + u * x + w * y;
                         rays += 1;
-                        let Some((t, tri)) = self.occluder.first_hit(origin, -view) else {
+                        let Some((t, tri)) = self.occluder.first_hit(origin, back) else {
                             continue;
                         };
                         let fi = self.face_of[tri] as usize;

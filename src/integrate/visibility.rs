@@ -49,7 +49,10 @@ struct FaceGeom {
     centroid: DVec3,
     radius: f64,
     two_sided: bool,
-    triangles: Vec<u32>,
+    /// Triangles to sample: the face's own, or — when the face is a convex polygon however
+    /// finely it is meshed — a fan over its outline, so sampling cost follows the face's
+    /// shape, not its tessellation.
+    pieces: Vec<[DVec3; 3]>,
     /// Distinct vertices of the face, for exact half-space tests.
     vertices: Vec<DVec3>,
     patch: u32,
@@ -79,7 +82,6 @@ enum Side {
 pub struct Visibility {
     mode: VisibilityMode,
     occluder: Occluder,
-    corners: Vec<[DVec3; 3]>,
     faces: Vec<FaceGeom>,
     patches: Vec<Patch>,
     /// Per receiver patch: the occluder patches that may block it, with their relation.
@@ -134,7 +136,7 @@ impl Visibility {
                     centroid: f.centroid,
                     radius: f.radius,
                     two_sided: scene.materials[f.material as usize].two_sided,
-                    triangles: f.triangles.clone(),
+                    pieces: pieces_of(f.normal, f.area, &f.triangles, &corners, &vertices, mode),
                     vertices,
                     patch: (i / per_patch) as u32,
                 }
@@ -173,7 +175,6 @@ impl Visibility {
         Visibility {
             mode,
             occluder,
-            corners,
             faces: geoms,
             patches,
             candidates,
@@ -246,8 +247,7 @@ impl Visibility {
         let directions = [Some(dirs.view), dirs.sun, earth];
         let mut s = Sampler::new(&self.occluder, n, directions, min_area);
         if self.mode == VisibilityMode::Centroid {
-            for &t in &f.triangles {
-                let c = &self.corners[t as usize];
+            for c in &f.pieces {
                 let bits = s.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
                 let a = area_of(c);
                 s.a_sun += a * (bits & 1) as f64;
@@ -268,13 +268,12 @@ impl Visibility {
                 self.face_blockers(face, n, flagged, d, &mut s.blockers[k]);
             }
         }
-        let full_area: f64 = f.triangles.iter().map(|&t| area_of(&self.corners[t as usize])).sum();
+        let full_area: f64 = f.pieces.iter().map(area_of).sum();
         if s.blockers.iter().all(Vec::is_empty) {
             return (full_area, full_area, 0);
         }
-        for &t in &f.triangles {
-            let corners = self.corners[t as usize];
-            s.refine(corners, None, area_of(&corners), 0, self.tol);
+        for piece in &f.pieces {
+            s.refine(*piece, None, area_of(piece), 0, self.tol);
         }
         (s.a_sun, s.a_earth, s.rays)
     }
@@ -300,6 +299,61 @@ impl Blocker {
         let s = dn.signum();
         points.iter().all(|v| s * self.normal.dot(*v - self.centre) >= -tol)
     }
+}
+
+/// The triangles a face is sampled on: a fan over its convex outline when the face is
+/// a convex polygon (its area equals its hull's), else its own triangles. The centroid
+/// method always samples the mesh's own triangles.
+fn pieces_of(
+    normal: DVec3,
+    area: f64,
+    triangles: &[u32],
+    corners: &[[DVec3; 3]],
+    vertices: &[DVec3],
+    mode: VisibilityMode,
+) -> Vec<[DVec3; 3]> {
+    let own = || triangles.iter().map(|&t| corners[t as usize]).collect();
+    if mode == VisibilityMode::Centroid || triangles.len() <= 2 {
+        return own();
+    }
+    let (u, w) = crate::radiometry::earth::orthonormal_basis(normal);
+    let origin = vertices[0];
+    let plane_point = |v: &DVec3| ((*v - origin).dot(u), (*v - origin).dot(w));
+    let mut pts: Vec<(f64, f64, usize)> = vertices
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let (x, y) = plane_point(v);
+            (x, y, i)
+        })
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    // Andrew's monotone chain, counter-clockwise about `normal` (u × w = normal)
+    let cross = |o: &(f64, f64, usize), a: &(f64, f64, usize), b: &(f64, f64, usize)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut hull: Vec<(f64, f64, usize)> = Vec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &(f64, f64, usize)>> =
+            if pass == 0 { Box::new(pts.iter()) } else { Box::new(pts.iter().rev()) };
+        for p in iter {
+            while hull.len() >= start + 2 && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0 {
+                hull.pop();
+            }
+            hull.push(*p);
+        }
+        hull.pop();
+    }
+    if hull.len() < 3 {
+        return own();
+    }
+    let hull_area: f64 = (1..hull.len() - 1).map(|i| 0.5 * cross(&hull[0], &hull[i], &hull[i + 1])).sum();
+    if (hull_area - area).abs() > 1e-9 * area {
+        return own(); // not convex (or holes): sample the mesh's triangles
+    }
+    let v = |h: &(f64, f64, usize)| vertices[h.2];
+    (1..hull.len() - 1).map(|i| [v(&hull[0]), v(&hull[i]), v(&hull[i + 1])]).collect()
 }
 
 /// Does the sphere (c_o, r_o) meet the half-infinite cylinder swept by the sphere

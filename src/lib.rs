@@ -10,6 +10,7 @@ pub mod cli;
 pub mod geometry;
 pub mod integrate;
 pub mod radiometry;
+pub mod render;
 pub mod report;
 pub mod scene;
 pub mod service;

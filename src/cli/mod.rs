@@ -52,6 +52,10 @@ pub struct SimulateArgs {
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
+    /// Write the thumbnails as PNG files into this directory (`epoch-00010.png`, …):
+    /// those the request asks for, or about eight 128-px frames when it asks for none.
+    #[arg(long, value_name = "DIR")]
+    pub thumbnails: Option<PathBuf>,
 }
 
 /// Runs the command line; the error message is printed by `main`.

@@ -3,7 +3,8 @@
 use super::SimulateArgs;
 use crate::integrate::{simulate_with, Progress};
 use crate::report;
-use crate::scene::{Limits, Scene};
+use crate::scene::response::Thumbnail;
+use crate::scene::{Limits, Scene, Thumbnails};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::Read;
@@ -18,8 +19,11 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         std::fs::read_to_string(&args.request)
             .with_context(|| format!("cannot read {}", args.request.display()))?
     };
-    let scene = Scene::from_json(&text, &Limits::unlimited())
+    let mut scene = Scene::from_json(&text, &Limits::unlimited())
         .map_err(|e| anyhow::anyhow!("invalid request {}: {e}", args.request.display()))?;
+    if args.thumbnails.is_some() && scene.thumbnails.is_none() {
+        scene.thumbnails = Some(Thumbnails::default_for(scene.epochs.len()));
+    }
 
     let progress = Progress::new();
     let bar = if args.quiet {
@@ -50,6 +54,9 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
             report::csv::to_csv(&response)
         };
         std::fs::write(out, body).with_context(|| format!("cannot write {}", out.display()))?;
+    }
+    if let Some(dir) = &args.thumbnails {
+        write_thumbnails(dir, response.thumbnails.as_deref().unwrap_or_default())?;
     }
     if let Some(plot) = &args.plot {
         let title = args
@@ -84,10 +91,22 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         );
     }
     println!("method: {}", s.method);
-    for (what, path) in [("light curve", &args.out), ("plot", &args.plot)] {
+    for (what, path) in [("light curve", &args.out), ("plot", &args.plot), ("thumbnails", &args.thumbnails)] {
         if let Some(p) = path {
             println!("{what}: {}", p.display());
         }
+    }
+    Ok(())
+}
+
+/// Writes each thumbnail as `DIR/epoch-NNNNN.png` (NNNNN: the epoch index).
+fn write_thumbnails(dir: &std::path::Path, thumbnails: &[Thumbnail]) -> anyhow::Result<()> {
+    use base64::Engine as _;
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    for t in thumbnails {
+        let png = base64::engine::general_purpose::STANDARD.decode(&t.png_base64)?;
+        let path = dir.join(format!("epoch-{:05}.png", t.epoch));
+        std::fs::write(&path, png).with_context(|| format!("cannot write {}", path.display()))?;
     }
     Ok(())
 }

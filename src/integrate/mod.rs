@@ -156,6 +156,14 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
         return Err(Cancelled);
     }
     let epochs: Vec<EpochResult> = epochs.into_iter().map(|e| e.ok_or(Cancelled)).collect::<Result<_, _>>()?;
+    // Images only when asked for: a light curve without them pays nothing.
+    let thumbnails = scene
+        .thumbnails
+        .as_ref()
+        .map(|spec| crate::render::Renderer::with_faces(scene, prepared.faces.clone()).thumbnails(spec));
+    if progress.is_cancelled() {
+        return Err(Cancelled);
+    }
     Ok(Response {
         summary: Summary {
             epochs: epochs.len(),
@@ -167,6 +175,6 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
             convex: prepared.convex,
         },
         epochs,
-        thumbnails: None,
+        thumbnails,
     })
 }

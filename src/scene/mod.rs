@@ -115,7 +115,55 @@ pub struct Scene {
     pub image_samples: u32,
     /// `centroid` method: times each triangle is split into four before sampling.
     pub centroid_subdivisions: u32,
+    /// Images to render after the light curve (`None`: none, and no cost).
+    pub thumbnails: Option<Thumbnails>,
 }
+
+/// How rendered radiance maps to 8-bit grey levels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Exposure {
+    /// One exposure for the whole sequence, so brightness changes between frames stay
+    /// visible: white is the median over the frames of each frame's 99th-percentile
+    /// lit pixel, so that glints saturate instead of darkening every other frame.
+    Fixed,
+    /// One exposure for the whole sequence: its brightest pixel is white.
+    Peak,
+    /// Each image exposed on its own 99th-percentile lit pixel.
+    Auto,
+    /// Logarithmic: the sequence's brightest pixel is white, six decades below is black.
+    Log,
+    /// This radiance is white, W/(m²·sr).
+    Radiance(f64),
+}
+
+/// Which epochs to render and how (validated `thumbnails` of the request).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Thumbnails {
+    /// Pixels on a side.
+    pub size: u32,
+    /// Samples per pixel side (samples² stratified samples per pixel).
+    pub samples: u32,
+    /// Indices into `Scene::epochs`, ascending, no repeats.
+    pub epochs: Vec<usize>,
+    pub exposure: Exposure,
+}
+
+impl Thumbnails {
+    /// The default for `n_epochs` epochs: 128 px, about eight frames spread over the
+    /// sequence, one exposure for all.
+    pub fn default_for(n_epochs: usize) -> Thumbnails {
+        let every = n_epochs.div_ceil(8).max(1);
+        Thumbnails {
+            size: 128,
+            samples: DEFAULT_THUMBNAIL_SAMPLES,
+            epochs: (0..n_epochs).step_by(every).collect(),
+            exposure: Exposure::Fixed,
+        }
+    }
+}
+
+/// Default samples per pixel side of a thumbnail (3×3 stratified).
+pub const DEFAULT_THUMBNAIL_SAMPLES: u32 = 3;
 
 impl Scene {
     /// Parses and validates request JSON text. The error names the offending field.

@@ -41,6 +41,46 @@ pub struct Request {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(example = 0)]
     pub centroid_subdivisions: Option<u32>,
+    /// Rendered images of the object as the observer sees it, returned in
+    /// `thumbnails` of the response. Absent: no images (and no cost).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thumbnails: Option<ThumbnailSpec>,
+}
+
+/// Which epochs to render, and how. `every` and `epochs` may be combined (their union
+/// is rendered); with neither, about eight frames spread over the sequence.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ThumbnailSpec {
+    /// Pixels on a side (square images), 8 to 2048. Default 128.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 128)]
+    pub size: Option<u32>,
+    /// Render every N-th epoch, starting with the first.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 10)]
+    pub every: Option<usize>,
+    /// Indices of epochs to render (0-based, into `epochs`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub epochs: Option<Vec<usize>>,
+    /// Stratified samples per pixel side (samples² per pixel), 1 to 16. Default 3.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub samples: Option<u32>,
+    /// `fixed` (default: one exposure for the whole sequence, from the typical bright
+    /// pixel of its frames, glints saturate), `peak` (one exposure, the sequence's
+    /// brightest pixel white), `auto` (each image on its own), `log` (six decades
+    /// below the sequence's brightest pixel are black), or a radiance in W/(m²·sr)
+    /// to map to white.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exposure: Option<ExposureSpec>,
+}
+
+/// An exposure mode by name, or the radiance (W/(m²·sr)) that maps to white.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[serde(untagged)]
+pub enum ExposureSpec {
+    Radiance(f64),
+    Mode(String),
 }
 
 /// The object: a triangle mesh and the materials its triangles use.

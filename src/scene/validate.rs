@@ -1,7 +1,7 @@
 //! Request → Scene: every input checked at the boundary, every error naming its field.
 
-use super::request::{EpochSpec, MaterialObject, MaterialSpec, MeshSpec, Request, TimeSpec};
-use super::{presets, EarthshineModel, Epoch, Illumination, Material, Method, Scene};
+use super::request::{EpochSpec, ExposureSpec, MaterialObject, MaterialSpec, MeshSpec, Request, ThumbnailSpec, TimeSpec};
+use super::{presets, EarthshineModel, Epoch, Exposure, Illumination, Material, Method, Scene, Thumbnails};
 use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet};
 use crate::geometry::{builtin, obj, Mesh};
 use crate::radiometry::{AU_M, EARTH_RADIUS_M};
@@ -73,10 +73,13 @@ pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
         }
         let inner = e.into_inner();
         let message = inner.to_string();
-        // serde reports an unknown field at its parent's path: name the field itself.
+        // Name the unknown field itself; serde_path_to_error's path may already end with it.
         if let Some(rest) = message.strip_prefix("unknown field `") {
             if let Some(name) = rest.split('`').next() {
-                field = if field.is_empty() {
+                let named = field == name || field.ends_with(&format!(".{name}"));
+                field = if named {
+                    field
+                } else if field.is_empty() {
                     name.to_string()
                 } else {
                     format!("{field}.{name}")
@@ -210,6 +213,11 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         }
     };
     let (image_size, image_samples, centroid_subdivisions) = fidelity(req, method, mesh.triangles.len(), limits)?;
+    let thumbnails = req
+        .thumbnails
+        .as_ref()
+        .map(|t| thumbnails(t, epochs.len()))
+        .transpose()?;
     Ok(Scene {
         mesh,
         materials,
@@ -220,7 +228,80 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         image_size,
         image_samples,
         centroid_subdivisions,
+        thumbnails,
     })
+}
+
+/// Most pixel samples (frames × size² × samples²) one request may ask to render.
+pub const MAX_THUMBNAIL_SAMPLES: u64 = 1 << 30;
+
+fn thumbnails(spec: &ThumbnailSpec, n_epochs: usize) -> Result<Thumbnails, ValidationError> {
+    let mut out = Thumbnails::default_for(n_epochs);
+    if let Some(size) = spec.size {
+        if !(8..=2048).contains(&size) {
+            return err("thumbnails.size", format!("must be between 8 and 2048 pixels, got {size}"));
+        }
+        out.size = size;
+    }
+    if let Some(samples) = spec.samples {
+        if !(1..=16).contains(&samples) {
+            return err("thumbnails.samples", format!("must be between 1 and 16 per pixel side, got {samples}"));
+        }
+        out.samples = samples;
+    }
+    if spec.every.is_some() || spec.epochs.is_some() {
+        let mut chosen = Vec::new();
+        if let Some(every) = spec.every {
+            if every == 0 {
+                return err("thumbnails.every", "must be at least 1");
+            }
+            chosen.extend((0..n_epochs).step_by(every));
+        }
+        for (i, &e) in spec.epochs.iter().flatten().enumerate() {
+            if e >= n_epochs {
+                return err(
+                    format!("thumbnails.epochs[{i}]"),
+                    format!("epoch index {e} out of range (there are {n_epochs} epochs)"),
+                );
+            }
+            chosen.push(e);
+        }
+        chosen.sort_unstable();
+        chosen.dedup();
+        if chosen.is_empty() {
+            return err("thumbnails.epochs", "selects no epoch");
+        }
+        out.epochs = chosen;
+    }
+    out.exposure = match &spec.exposure {
+        None => Exposure::Fixed,
+        Some(ExposureSpec::Mode(m)) => match m.as_str() {
+            "fixed" => Exposure::Fixed,
+            "peak" => Exposure::Peak,
+            "auto" => Exposure::Auto,
+            "log" => Exposure::Log,
+            other => {
+                return err(
+                    "thumbnails.exposure",
+                    format!("unknown exposure `{other}`; expected fixed, peak, auto, log or a radiance in W/(m²·sr)"),
+                )
+            }
+        },
+        Some(ExposureSpec::Radiance(r)) => Exposure::Radiance(positive("thumbnails.exposure", *r)?),
+    };
+    let total = out.epochs.len() as u64 * (out.size as u64).pow(2) * (out.samples as u64).pow(2);
+    if total > MAX_THUMBNAIL_SAMPLES {
+        return err(
+            "thumbnails",
+            format!(
+                "too many pixel samples: {} frames × {}² pixels × {}² samples = {total} (limit {MAX_THUMBNAIL_SAMPLES})",
+                out.epochs.len(),
+                out.size,
+                out.samples
+            ),
+        );
+    }
+    Ok(out)
 }
 
 /// The methods' fidelity settings: (image_size, image_samples, centroid_subdivisions).

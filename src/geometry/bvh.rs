@@ -65,7 +65,7 @@ impl Occluder {
     #[inline]
     pub fn is_clear(&self, origin: DVec3, normal: DVec3, dir: DVec3) -> bool {
         let o = origin - self.centre + normal * self.offset;
-        let ray = Ray::new(to_f32(o), to_f32(dir), 0.0, f32::INFINITY);
+        let ray = Ray::new(to_f32(o), dir_f32(dir), 0.0, f32::INFINITY);
         self.bvh
             .ray_traverse_miss(ray, |ray, id| self.tris[id].intersect(ray))
     }
@@ -73,7 +73,7 @@ impl Occluder {
     /// Distance to the first hit along the ray from `origin` (not offset), or `None`.
     /// Used by the renderer and tests.
     pub fn first_hit(&self, origin: DVec3, dir: DVec3) -> Option<(f64, usize)> {
-        let ray = Ray::new(to_f32(origin - self.centre), to_f32(dir), 0.0, f32::INFINITY);
+        let ray = Ray::new(to_f32(origin - self.centre), dir_f32(dir), 0.0, f32::INFINITY);
         let mut hit = obvhs::ray::RayHit::none();
         if self
             .bvh
@@ -85,6 +85,22 @@ impl Occluder {
             None
         }
     }
+}
+
+/// A ray direction for obvhs. obvhs 0.4 misses every hit along a direction with a −0.0
+/// component (its octant test and 1/−0 = −∞ disagree), so components that are zero in
+/// f32 are handed over as +0.0.
+#[inline]
+fn dir_f32(d: DVec3) -> Vec3A {
+    let c = |x: f64| {
+        let x = x as f32;
+        if x == 0.0 {
+            0.0
+        } else {
+            x
+        }
+    };
+    Vec3A::new(c(d.x), c(d.y), c(d.z))
 }
 
 #[inline]

@@ -117,12 +117,34 @@ pub struct MeshSpec {
 
 /// A material: a preset name, or an object with `name` and either `model` + parameters
 /// or `preset`.
-#[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Serialize, ToSchema)]
 #[serde(untagged)]
 pub enum MaterialSpec {
     /// A preset by name: `seed-body-wrap` or `seed-white-paint` (the paper's §5.1).
     Preset(String),
     Full(MaterialObject),
+}
+
+// By hand rather than `untagged`: an untagged enum buffers the value and reports only
+// "did not match any variant", losing the field (`albdo`, a string `albedo`) that is wrong.
+// Dispatching on the JSON type keeps serde's own error and its path.
+impl<'de> Deserialize<'de> for MaterialSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = MaterialSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a preset name or a material object")
+            }
+            fn visit_str<E: serde::de::Error>(self, s: &str) -> Result<MaterialSpec, E> {
+                Ok(MaterialSpec::Preset(s.to_owned()))
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<MaterialSpec, A::Error> {
+                MaterialObject::deserialize(serde::de::value::MapAccessDeserializer::new(map)).map(MaterialSpec::Full)
+            }
+        }
+        deserializer.deserialize_any(Visitor)
+    }
 }
 
 /// A material with its model parameters. Which parameters are allowed depends on `model`:

@@ -117,8 +117,16 @@ fn vector(field: &str, v: [f64; 3]) -> Result<DVec3, ValidationError> {
     if !d.is_finite() {
         return err(field, "must have three finite components");
     }
-    if d.length_squared() == 0.0 || !d.length_squared().is_normal() {
+    if d == DVec3::ZERO {
         return err(field, "must not be the zero vector");
+    }
+    let l2 = d.length_squared();
+    // |v|² must be a normal f64 for the direction and the range to be computed.
+    if l2.is_infinite() {
+        return err(field, "is too long: its length must be below 1e150");
+    }
+    if !l2.is_normal() {
+        return err(field, "is too short to give a direction: its length must be above 1e-150");
     }
     Ok(d)
 }

@@ -17,7 +17,9 @@ const JSON: (&str, &str) = ("Content-Type", "application/json");
 fn assert_error(r: &Reply, status: u16, field: Option<&str>) {
     assert_eq!(r.status, status, "{}", r.text());
     assert!(
-        r.header("content-type").unwrap_or("").starts_with("application/json"),
+        r.header("content-type")
+            .unwrap_or("")
+            .starts_with("application/json"),
         "{:?}",
         r.headers
     );
@@ -57,11 +59,16 @@ fn lightcurve_json_and_csv_equal_the_engine() {
     // The request counts and epochs show up in the metrics.
     let m = get(server.addr, "/metrics").text();
     assert!(
-        m.contains(&format!("glint_epochs_computed_total{{kind=\"sync\"}} {}", 2 * 12)),
+        m.contains(&format!(
+            "glint_epochs_computed_total{{kind=\"sync\"}} {}",
+            2 * 12
+        )),
         "{m}"
     );
     assert!(
-        m.contains("glint_http_requests_total{method=\"POST\",route=\"/v1/lightcurves\",status=\"200\"} 2"),
+        m.contains(
+            "glint_http_requests_total{method=\"POST\",route=\"/v1/lightcurves\",status=\"200\"} 2"
+        ),
         "{m}"
     );
 }
@@ -76,7 +83,10 @@ fn job_submitted_polled_fetched_and_removed() {
     assert_eq!(r.status, 202, "{}", r.text());
     let status = r.json();
     let id = status["id"].as_str().unwrap().to_string();
-    assert_eq!(r.header("location"), Some(format!("/v1/jobs/{id}").as_str()));
+    assert_eq!(
+        r.header("location"),
+        Some(format!("/v1/jobs/{id}").as_str())
+    );
     assert_eq!(status["epochs_total"], 40);
     assert!(status["created_at"].as_str().unwrap().ends_with('Z'));
 
@@ -111,19 +121,33 @@ fn job_submitted_polled_fetched_and_removed() {
     let list = get(server.addr, "/v1/jobs?limit=10").json();
     assert_eq!(list.as_array().unwrap().len(), 1);
     assert_eq!(list[0]["id"], id.as_str());
-    assert_eq!(get(server.addr, "/v1/jobs?state=queued").json(), serde_json::json!([]));
+    assert_eq!(
+        get(server.addr, "/v1/jobs?state=queued").json(),
+        serde_json::json!([])
+    );
     assert_error(&get(server.addr, "/v1/jobs?limit=0"), 400, Some("limit"));
     assert_error(&get(server.addr, "/v1/jobs?state=sleeping"), 400, None);
 
     let m = get(server.addr, "/metrics").text();
     assert!(m.contains("glint_jobs{state=\"done\"} 1"), "{m}");
-    assert!(m.contains("glint_epochs_computed_total{kind=\"job\"} 40"), "{m}");
+    assert!(
+        m.contains("glint_epochs_computed_total{kind=\"job\"} 40"),
+        "{m}"
+    );
 
     // A finished job is removed by DELETE, result and all.
     let r = http(server.addr, "DELETE", &format!("/v1/jobs/{id}"), &[], b"");
     assert_eq!(r.status, 204, "{}", r.text());
-    assert_error(&get(server.addr, &format!("/v1/jobs/{id}")), 404, Some("id"));
-    assert_error(&get(server.addr, &format!("/v1/jobs/{id}/result")), 404, Some("id"));
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{id}")),
+        404,
+        Some("id"),
+    );
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{id}/result")),
+        404,
+        Some("id"),
+    );
 }
 
 #[test]
@@ -136,8 +160,14 @@ fn cancellation_and_a_full_service() {
     });
     // Long enough (tens of seconds in a debug build) to be cancelled mid-run.
     let big = scene_request_repeated("box-wing", 40_000);
-    let a = post_json(server.addr, "/v1/jobs", &big).json()["id"].as_str().unwrap().to_string();
-    let b = post_json(server.addr, "/v1/jobs", &big).json()["id"].as_str().unwrap().to_string();
+    let a = post_json(server.addr, "/v1/jobs", &big).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let b = post_json(server.addr, "/v1/jobs", &big).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
 
     // Wait until `a` is running and has computed something.
     let start = std::time::Instant::now();
@@ -146,11 +176,17 @@ fn cancellation_and_a_full_service() {
         if s["state"] == "running" && s["epochs_done"].as_u64().unwrap() > 0 {
             break;
         }
-        assert!(start.elapsed() < Duration::from_secs(60), "job never ran: {s}");
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "job never ran: {s}"
+        );
         std::thread::sleep(Duration::from_millis(20));
     }
     // `b` waits behind `a` (one job at a time).
-    assert_eq!(get(server.addr, &format!("/v1/jobs/{b}")).json()["state"], "queued");
+    assert_eq!(
+        get(server.addr, &format!("/v1/jobs/{b}")).json()["state"],
+        "queued"
+    );
 
     // The only slot is taken: a light curve is turned away with Retry-After.
     let small = scene_request("plate", 2);
@@ -169,7 +205,11 @@ fn cancellation_and_a_full_service() {
     let s = get(server.addr, &format!("/v1/jobs/{a}")).json();
     let done = s["epochs_done"].as_u64().unwrap();
     assert!(done > 0 && done < 40_000, "{s}");
-    assert_error(&get(server.addr, &format!("/v1/jobs/{a}/result")), 409, None);
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{a}/result")),
+        409,
+        None,
+    );
 
     // The slot comes back once the engine stops at its next epoch.
     let start = std::time::Instant::now();
@@ -179,13 +219,19 @@ fn cancellation_and_a_full_service() {
             break;
         }
         assert_error(&r, 503, None);
-        assert!(start.elapsed() < Duration::from_secs(30), "slot never freed");
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "slot never freed"
+        );
         std::thread::sleep(Duration::from_millis(50));
     }
     // Both stay cancelled: nothing runs them again.
     std::thread::sleep(Duration::from_millis(300));
     for id in [&a, &b] {
-        assert_eq!(get(server.addr, &format!("/v1/jobs/{id}")).json()["state"], "cancelled");
+        assert_eq!(
+            get(server.addr, &format!("/v1/jobs/{id}")).json()["state"],
+            "cancelled"
+        );
     }
 }
 
@@ -201,41 +247,79 @@ fn every_error_class_has_the_json_shape() {
     let ok = scene_request("plate", 3);
 
     // 415: no or wrong content type.
-    assert_error(&http(addr, "POST", "/v1/lightcurves", &[], ok.as_bytes()), 415, Some("Content-Type"));
     assert_error(
-        &http(addr, "POST", "/v1/jobs", &[("Content-Type", "text/plain")], ok.as_bytes()),
+        &http(addr, "POST", "/v1/lightcurves", &[], ok.as_bytes()),
+        415,
+        Some("Content-Type"),
+    );
+    assert_error(
+        &http(
+            addr,
+            "POST",
+            "/v1/jobs",
+            &[("Content-Type", "text/plain")],
+            ok.as_bytes(),
+        ),
         415,
         Some("Content-Type"),
     );
     // 400: broken JSON, empty body.
-    assert_error(&post_json(addr, "/v1/lightcurves", "{\"object\": "), 400, None);
+    assert_error(
+        &post_json(addr, "/v1/lightcurves", "{\"object\": "),
+        400,
+        None,
+    );
     assert_error(&post_json(addr, "/v1/lightcurves", ""), 400, None);
     // 422: unknown field, wrong type, bad value — each naming its field.
     let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
     v["colour"] = "red".into();
-    assert_error(&post_json(addr, "/v1/lightcurves", &v.to_string()), 422, Some("colour"));
+    assert_error(
+        &post_json(addr, "/v1/lightcurves", &v.to_string()),
+        422,
+        Some("colour"),
+    );
     let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
     v["epochs"][1]["sun"] = "up".into();
-    assert_error(&post_json(addr, "/v1/lightcurves", &v.to_string()), 422, Some("epochs[1].sun"));
+    assert_error(
+        &post_json(addr, "/v1/lightcurves", &v.to_string()),
+        422,
+        Some("epochs[1].sun"),
+    );
     let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
     v["epochs"][2]["observer"] = serde_json::json!([0.0, 0.0, 0.0]);
-    assert_error(&post_json(addr, "/v1/lightcurves", &v.to_string()), 422, Some("epochs[2].observer"));
+    assert_error(
+        &post_json(addr, "/v1/lightcurves", &v.to_string()),
+        422,
+        Some("epochs[2].observer"),
+    );
     // 413: body over the byte limit; epochs over the synchronous limit (a job takes them);
     // epochs over the job limit; a mesh over the triangle limit.
     let huge = format!("{{\"pad\": \"{}\"}}", "x".repeat(100 * 1024));
     assert_error(&post_json(addr, "/v1/lightcurves", &huge), 413, None);
     assert_error(&post_json(addr, "/v1/jobs", &huge), 413, None);
     let eleven = scene_request("plate", 11);
-    assert_error(&post_json(addr, "/v1/lightcurves", &eleven), 413, Some("epochs"));
+    assert_error(
+        &post_json(addr, "/v1/lightcurves", &eleven),
+        413,
+        Some("epochs"),
+    );
     assert_eq!(post_json(addr, "/v1/jobs", &eleven).status, 202);
-    assert_error(&post_json(addr, "/v1/jobs", &scene_request("plate", 21)), 413, Some("epochs"));
+    assert_error(
+        &post_json(addr, "/v1/jobs", &scene_request("plate", 21)),
+        413,
+        Some("epochs"),
+    );
     let sphere = scene_request("sphere", 1); // 1280 triangles
     let r = post_json(addr, "/v1/lightcurves", &sphere);
     assert_error(&r, 413, None);
     // 404: unknown route, job, scene; 405 on a known route.
     assert_error(&get(addr, "/v2/nothing"), 404, None);
     assert_error(&get(addr, "/v1/jobs/not-a-job"), 404, Some("id"));
-    assert_error(&http(addr, "DELETE", "/v1/jobs/not-a-job", &[], b""), 404, Some("id"));
+    assert_error(
+        &http(addr, "DELETE", "/v1/jobs/not-a-job", &[], b""),
+        404,
+        Some("id"),
+    );
     assert_error(&get(addr, "/v1/scenes/teapot"), 404, Some("name"));
     let r = get(addr, "/v1/lightcurves");
     assert_error(&r, 405, None);
@@ -254,8 +338,18 @@ fn bearer_token_when_set_and_loopback_when_not() {
         let r = get(addr, path);
         assert_error(&r, 401, Some("Authorization"));
         assert_eq!(r.header("www-authenticate"), Some("Bearer"));
-        assert_error(&http(addr, "GET", path, &[("Authorization", "Bearer nope")], b""), 401, None);
-        let r = http(addr, "GET", path, &[("Authorization", "Bearer s3cret")], b"");
+        assert_error(
+            &http(addr, "GET", path, &[("Authorization", "Bearer nope")], b""),
+            401,
+            None,
+        );
+        let r = http(
+            addr,
+            "GET",
+            path,
+            &[("Authorization", "Bearer s3cret")],
+            b"",
+        );
         assert_eq!(r.status, 200, "{path}: {}", r.text());
     }
     let req = scene_request("plate", 2);
@@ -279,7 +373,10 @@ fn bearer_token_when_set_and_loopback_when_not() {
         data_dir: temp_dir("refuse"),
         ..Default::default()
     };
-    let err = rt.block_on(glint::service::start(config)).err().expect("refused");
+    let err = rt
+        .block_on(glint::service::start(config))
+        .err()
+        .expect("refused");
     assert!(err.to_string().contains("GLINT_API_TOKEN"), "{err}");
 }
 
@@ -300,7 +397,9 @@ fn scenes_are_the_builtins_and_the_example_files() {
     for name in ["box-wing", "sphere", "plate"] {
         let r = get(server.addr, &format!("/v1/scenes/{name}"));
         assert_eq!(r.status, 200);
-        let file = std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap();
+        let file =
+            std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR")))
+                .unwrap();
         let want: serde_json::Value = serde_json::from_str(&file).unwrap();
         assert_eq!(r.json(), want, "{name}");
     }
@@ -310,7 +409,9 @@ fn scenes_are_the_builtins_and_the_example_files() {
 fn docs_and_spec_are_served_and_the_spec_example_is_a_valid_request() {
     let server = Server::start("docs", |_| {});
     let spec = get(server.addr, "/openapi.json").json();
-    let example = spec["paths"]["/v1/lightcurves"]["post"]["requestBody"]["content"]["application/json"]["example"].clone();
+    let example = spec["paths"]["/v1/lightcurves"]["post"]["requestBody"]["content"]
+        ["application/json"]["example"]
+        .clone();
     assert!(example.is_object(), "no example in the spec");
     let r = post_json(server.addr, "/v1/lightcurves", &example.to_string());
     assert_eq!(r.status, 200, "{}", r.text());
@@ -330,11 +431,63 @@ fn committed_openapi_matches_the_code() {
             .lines()
             .zip(generated.lines())
             .position(|(a, b)| a != b)
-            .map_or(committed.lines().count().min(generated.lines().count()), |i| i);
+            .map_or(
+                committed.lines().count().min(generated.lines().count()),
+                |i| i,
+            );
         panic!(
             "openapi/openapi.json differs from the code from line {} on; regenerate it with \
              `cargo run -- openapi > openapi/openapi.json`",
             line + 1
         );
     }
+}
+
+#[test]
+fn thumbnails_of_a_finished_job_are_served_as_png() {
+    let server = Server::start("thumbs", |_| {});
+    let mut req: serde_json::Value = serde_json::from_str(&scene_request("box-wing", 6)).unwrap();
+    req["thumbnails"] = serde_json::json!({ "size": 16, "samples": 1, "epochs": [0, 4] });
+    let r = post_json(server.addr, "/v1/jobs", &req.to_string());
+    assert_eq!(r.status, 202, "{}", r.text());
+    let id = r.json()["id"].as_str().unwrap().to_string();
+    assert_eq!(
+        wait_final(server.addr, &id, &[], Duration::from_secs(120))["state"],
+        "done"
+    );
+    let result: glint::Response =
+        serde_json::from_slice(&get(server.addr, &format!("/v1/jobs/{id}/result")).body).unwrap();
+    let thumbs = result.thumbnails.expect("the request asked for thumbnails");
+    for t in &thumbs {
+        let r = get(
+            server.addr,
+            &format!("/v1/jobs/{id}/thumbnails/{}.png", t.epoch),
+        );
+        assert_eq!(r.status, 200, "{}", r.text());
+        assert_eq!(r.header("content-type"), Some("image/png"));
+        // The served bytes are the stored image, decoded from base64, and a PNG of the
+        // requested size.
+        use base64::Engine as _;
+        let want = base64::engine::general_purpose::STANDARD
+            .decode(&t.png_base64)
+            .unwrap();
+        assert_eq!(r.body, want);
+        let img = image::load_from_memory_with_format(&r.body, image::ImageFormat::Png).unwrap();
+        assert_eq!((img.width(), img.height()), (16, 16));
+    }
+    assert_eq!(
+        thumbs.iter().map(|t| t.epoch).collect::<Vec<_>>(),
+        vec![0, 4]
+    );
+    // An epoch that was not rendered, and a file name that is not `{epoch}.png`.
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{id}/thumbnails/1.png")),
+        404,
+        Some("epoch"),
+    );
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{id}/thumbnails/zero.png")),
+        404,
+        Some("epoch"),
+    );
 }

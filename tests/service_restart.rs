@@ -18,7 +18,14 @@ struct Proc {
 /// Starts `glint serve` on a free loopback port and reads the port from its first line.
 fn spawn(dir: &Path) -> Proc {
     let mut child = Command::new(env!("CARGO_BIN_EXE_glint"))
-        .args(["serve", "--addr", "127.0.0.1:0", "--max-running-jobs", "1", "--data-dir"])
+        .args([
+            "serve",
+            "--addr",
+            "127.0.0.1:0",
+            "--max-running-jobs",
+            "1",
+            "--data-dir",
+        ])
         .arg(dir)
         .env_remove("GLINT_API_TOKEN")
         .stdout(Stdio::null())
@@ -49,13 +56,19 @@ fn jobs_survive_kill_9_and_a_graceful_restart() {
     let r = post_json(p.addr, "/v1/jobs", &small);
     assert_eq!(r.status, 202, "{}", r.text());
     let j1 = r.json()["id"].as_str().unwrap().to_string();
-    assert_eq!(wait_final(p.addr, &j1, &[], Duration::from_secs(120))["state"], "done");
+    assert_eq!(
+        wait_final(p.addr, &j1, &[], Duration::from_secs(120))["state"],
+        "done"
+    );
     let r1 = get(p.addr, &format!("/v1/jobs/{j1}/result"));
     assert_eq!(r1.status, 200);
 
     // …one killed mid-run, and one accepted just before the kill (queued behind it).
-    let big = scene_request_repeated("box-wing", 4000);
-    let j2 = post_json(p.addr, "/v1/jobs", &big).json()["id"].as_str().unwrap().to_string();
+    let big = scene_request_repeated("box-wing", 1500);
+    let j2 = post_json(p.addr, "/v1/jobs", &big).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
     let start = Instant::now();
     loop {
         let s = get(p.addr, &format!("/v1/jobs/{j2}")).json();
@@ -81,7 +94,8 @@ fn jobs_survive_kill_9_and_a_graceful_restart() {
     let s = wait_final(p.addr, &j2, &[], Duration::from_secs(300));
     assert_eq!(s["state"], "done", "{s}");
     assert_eq!(s["attempts"], 2, "{s}");
-    let got: glint::Response = serde_json::from_slice(&get(p.addr, &format!("/v1/jobs/{j2}/result")).body).unwrap();
+    let got: glint::Response =
+        serde_json::from_slice(&get(p.addr, &format!("/v1/jobs/{j2}/result")).body).unwrap();
     assert_eq!(got.epochs, direct(&big).epochs);
     // The job accepted right before the kill was not lost.
     let s = wait_final(p.addr, &j3, &[], Duration::from_secs(120));
@@ -101,7 +115,10 @@ fn jobs_survive_kill_9_and_a_graceful_restart() {
         if let Some(s) = child.try_wait().unwrap() {
             break s;
         }
-        assert!(start.elapsed() < Duration::from_secs(30), "no exit after SIGTERM");
+        assert!(
+            start.elapsed() < Duration::from_secs(30),
+            "no exit after SIGTERM"
+        );
         std::thread::sleep(Duration::from_millis(50));
     };
     assert!(status.success(), "{status}");

@@ -140,9 +140,9 @@ impl<'a> Renderer<'a> {
             occluder: &self.occluder,
             face_of: &self.face_of,
             shades: &shades,
-            sun: epoch.sun,
-            earth: light.earthshine.shadow_dir,
-            dir: -view,
+            sun: shade::ray_dir(epoch.sun),
+            earth: light.earthshine.shadow_dir.map(shade::ray_dir),
+            dir: shade::ray_dir(-view),
         };
         let w = size as usize;
         let mut radiance = vec![0f32; w * w];

@@ -149,3 +149,10 @@ impl Shader<'_> {
         (l, rays)
     }
 }
+
+/// A ray direction safe for obvhs 0.4, which misses every hit along a direction with a
+/// −0.0 component (its octant test and 1/−0 = −∞ disagree): components that are or
+/// would round to zero in f32 become +0.0.
+pub fn ray_dir(d: DVec3) -> DVec3 {
+    DVec3::from_array(d.to_array().map(|x| if x.abs() < 1e-37 { 0.0 } else { x }))
+}

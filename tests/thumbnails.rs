@@ -326,7 +326,10 @@ fn default_thumbnails_spread_about_eight_frames() {
 fn bad(spec: serde_json::Value) -> ValidationError {
     let mut req = box_wing_file();
     req["thumbnails"] = spec;
-    Scene::from_json(&req.to_string(), &Limits::unlimited()).expect_err("must be rejected")
+    match Scene::from_json(&req.to_string(), &Limits::unlimited()) {
+        Ok(_) => panic!("{} must be rejected", req["thumbnails"]),
+        Err(e) => e,
+    }
 }
 
 #[test]
@@ -363,10 +366,26 @@ fn validation_errors_name_the_field() {
         assert_eq!(e.field, field, "{spec}: {e}");
         assert!(!e.is_limit(), "{spec}: {e}");
     }
-    // 341 frames × 2048² × 16² samples: a size limit (HTTP 413), not a bad value
-    let e = bad(serde_json::json!({ "size": 2048, "every": 1, "samples": 16 }));
-    assert_eq!(e.field, "thumbnails");
-    assert!(e.is_limit(), "{e}");
+    // size limits (HTTP 413), not bad values: 341 frames × 1024² pixels (memory), and
+    // 5 frames × 1024² × 16² samples (time)
+    for spec in [
+        serde_json::json!({ "size": 1024, "every": 1 }),
+        serde_json::json!({ "size": 1024, "epochs": [0, 1, 2, 3, 4], "samples": 16 }),
+    ] {
+        let e = bad(spec.clone());
+        assert_eq!(e.field, "thumbnails", "{spec}");
+        assert!(e.is_limit(), "{spec}: {e}");
+    }
+    assert!(Scene::from_json(
+        &{
+            let mut r = box_wing_file();
+            r["thumbnails"] =
+                serde_json::json!({ "size": 1024, "epochs": [0, 1, 2, 3], "samples": 8 });
+            r.to_string()
+        },
+        &Limits::unlimited()
+    )
+    .is_ok());
 }
 
 #[test]

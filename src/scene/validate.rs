@@ -242,6 +242,8 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
 
 /// Most pixel samples (frames × size² × samples²) one request may ask to render.
 pub const MAX_THUMBNAIL_SAMPLES: u64 = 1 << 30;
+/// Most pixels (frames × size²) one request may ask to render: 256 MiB of f32 radiance.
+pub const MAX_THUMBNAIL_PIXELS: u64 = 1 << 26;
 
 fn thumbnails(spec: &ThumbnailSpec, n_epochs: usize) -> Result<Thumbnails, ValidationError> {
     let mut out = Thumbnails::default_for(n_epochs);
@@ -297,7 +299,19 @@ fn thumbnails(spec: &ThumbnailSpec, n_epochs: usize) -> Result<Thumbnails, Valid
         },
         Some(ExposureSpec::Radiance(r)) => Exposure::Radiance(positive("thumbnails.exposure", *r)?),
     };
-    let total = out.epochs.len() as u64 * (out.size as u64).pow(2) * (out.samples as u64).pow(2);
+    // The radiometric images of a sequence are held together (one exposure for all).
+    let pixels = out.epochs.len() as u64 * (out.size as u64).pow(2);
+    if pixels > MAX_THUMBNAIL_PIXELS {
+        return err(
+            "thumbnails",
+            format!(
+                "too many pixels: {} frames × {}² = {pixels} (limit {MAX_THUMBNAIL_PIXELS}); render fewer or smaller frames",
+                out.epochs.len(),
+                out.size
+            ),
+        );
+    }
+    let total = pixels * (out.samples as u64).pow(2);
     if total > MAX_THUMBNAIL_SAMPLES {
         return err(
             "thumbnails",

@@ -491,3 +491,42 @@ fn thumbnails_of_a_finished_job_are_served_as_png() {
         Some("epoch"),
     );
 }
+
+#[test]
+fn a_light_curve_over_the_request_timeout_is_stopped_and_frees_its_slot() {
+    let server = Server::start("timeout", |c| {
+        c.limits.request_timeout = Duration::from_millis(1);
+        c.limits.max_concurrent = 1;
+    });
+    // 20 000 epochs take over a minute in a debug build, and cannot finish in 1 ms.
+    let r = post_json(
+        server.addr,
+        "/v1/lightcurves",
+        &scene_request_repeated("box-wing", 20_000),
+    );
+    assert_error(&r, 503, None);
+    assert!(
+        r.json()["error"]
+            .as_str()
+            .unwrap()
+            .contains("POST /v1/jobs"),
+        "{}",
+        r.text()
+    );
+    // The engine is told to stop at its next epoch, so the only slot comes back long
+    // before the 20 000 epochs could have been computed (the gauge reads 0 again).
+    let start = std::time::Instant::now();
+    loop {
+        let m = get(server.addr, "/metrics").text();
+        if m.contains("glint_computations_running 0") {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(30), "{m}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let m = get(server.addr, "/metrics").text();
+    assert!(
+        m.contains("glint_epochs_computed_total{kind=\"sync\"} 0"),
+        "{m}"
+    );
+}

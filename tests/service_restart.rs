@@ -127,7 +127,36 @@ fn jobs_survive_kill_9_and_a_graceful_restart() {
     let mut p = spawn(&dir);
     let list = get(p.addr, "/v1/jobs").json();
     assert_eq!(list.as_array().unwrap().len(), 3, "{list}");
+    // The container's HEALTHCHECK command: 0 while the service answers, 1 once it is gone.
+    let health = || {
+        Command::new(env!("CARGO_BIN_EXE_glint"))
+            .args(["healthcheck", "--addr", &p.addr.to_string()])
+            .stderr(Stdio::null())
+            .status()
+            .unwrap()
+            .code()
+    };
+    assert_eq!(health(), Some(0));
     p.child.kill().unwrap();
     p.child.wait().unwrap();
+    assert_eq!(health(), Some(1));
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn glint_openapi_prints_the_committed_spec() {
+    let out = Command::new(env!("CARGO_BIN_EXE_glint"))
+        .arg("openapi")
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let committed = std::fs::read(format!(
+        "{}/openapi/openapi.json",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
+    assert!(
+        out.stdout == committed,
+        "`glint openapi` differs from openapi/openapi.json"
+    );
 }

@@ -186,9 +186,17 @@ pub fn print_openapi() -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `glint healthcheck`: exits 0 when `GET /healthz` answers 200 (the container's
-/// HEALTHCHECK; no curl needed in the image).
+/// `glint healthcheck`: exits 0 when `GET /healthz` answers 200, else 1 with the reason on
+/// stderr (the container's HEALTHCHECK, where 1 means unhealthy; no curl in the image).
 pub fn healthcheck(addr: SocketAddr) -> anyhow::Result<()> {
+    if let Err(e) = probe_health(addr) {
+        eprintln!("unhealthy: {e:#}");
+        std::process::exit(1);
+    }
+    Ok(())
+}
+
+fn probe_health(addr: SocketAddr) -> anyhow::Result<()> {
     let mut addr = addr;
     if addr.ip().is_unspecified() {
         // Listening on all interfaces: ask over loopback.

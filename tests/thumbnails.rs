@@ -48,9 +48,10 @@ fn box_wing_cases() -> (Scene, Vec<&'static str>) {
             epoch([0.3, 0.2, 0.93], [-0.3, -0.2, 0.93], geo),
         ),
         (
-            // near the mirror direction of the +x face, panels seen edge-on-ish
-            "glint on the +x face",
-            epoch([0.9, 0.35, 0.1], [0.9, -0.38, 0.05], geo),
+            // half a lobe width (slope_rms 0.01) off the mirror direction of the +x face:
+            // the glint's flank, beside the panels' +x sides
+            "glint flank on the +x face",
+            epoch([0.9, 0.35, 0.1], [0.9, -0.35, -0.09], geo),
         ),
         (
             // the Sun behind the Earth (umbra at GEO): earthshine alone, from −z, with

@@ -1,0 +1,240 @@
+//! Partial shadowing and occlusion by other parts of the mesh, against areas known from
+//! the geometry: a horizontal occluder casts a translated copy of itself.
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use glint::geometry::builtin::{plate, push_quad};
+use glint::geometry::Mesh;
+use std::f64::consts::PI;
+
+const RANGE: f64 = 3.6e7;
+/// Height of the occluder above the plate, m.
+const H: f64 = 1.5;
+/// In-plane rotation of the occluder: its shadow's edges cross the plate's triangles
+/// and their subdivisions at no special angle.
+const GAMMA: f64 = 0.3;
+
+#[derive(Clone, Copy, Debug)]
+enum Occluder {
+    FacingUp,
+    FacingDown,
+    TwoSided,
+}
+
+/// A 2 m × 2 m plate (normal +z, `cells`² cells, albedo `a`) and, `H` above it, a black
+/// square of side √2 (half the plate's area) turned by `GAMMA`, placed so that its
+/// projection along `dir` falls on the plate's centre. Its projection along any other
+/// direction used here misses the plate entirely.
+fn half_scene(
+    dir: DVec3,
+    cells: u32,
+    a: f64,
+    occ: Occluder,
+) -> (Mesh, Vec<glint::scene::Material>) {
+    let mut mesh = plate(2.0, 2.0, cells);
+    let centre = DVec3::new(dir.x / dir.z * H, dir.y / dir.z * H, H);
+    let half = 0.5 * 2f64.sqrt();
+    let (c, s) = (GAMMA.cos(), GAMMA.sin());
+    let corner = |x: f64, y: f64| centre + DVec3::new(c * x - s * y, s * x + c * y, 0.0);
+    let mut q = [
+        corner(-half, -half),
+        corner(half, -half),
+        corner(half, half),
+        corner(-half, half),
+    ];
+    if matches!(occ, Occluder::FacingDown) {
+        q.reverse();
+    }
+    push_quad(&mut mesh, q, 1);
+    let materials = vec![
+        lambert("plate", a, false),
+        lambert("occluder", 0.0, matches!(occ, Occluder::TwoSided)),
+    ];
+    (mesh, materials)
+}
+
+/// Directions of the test: one at 60° elevation (the occluder's side), one at 35° from
+/// the opposite azimuth, whose projection of the occluder lands 3 m off the plate centre
+/// (beyond the plate's 1.41 m reach in that direction plus the occluder's 1 m).
+fn dirs() -> (DVec3, DVec3) {
+    let az = 0.7;
+    (
+        dir(60f64.to_radians(), az),
+        dir(35f64.to_radians(), az + PI),
+    )
+}
+
+/// Irradiance and lit-and-seen area of the half-covered plate at tolerance `tol`.
+fn half_result(l: DVec3, v: DVec3, cells: u32, occ: Occluder, tol: f64) -> (f64, f64) {
+    let (mesh, mats) = half_scene(if l.z > v.z { l } else { v }, cells, 0.5, occ);
+    let mut sc = scene(mesh, mats, vec![epoch(l, v * RANGE)]);
+    sc.tolerance = tol;
+    let r = glint::simulate(&sc);
+    assert_sane(&r);
+    (r.epochs[0].irradiance_w_m2, r.epochs[0].lit_visible_area_m2)
+}
+
+/// What half the plate gives: E_s (a/π) (A/2) cosθi cosθr / R².
+fn half_exact(l: DVec3, v: DVec3) -> f64 {
+    es_default() * 0.5 / PI * 2.0 * l.z * v.z / (RANGE * RANGE)
+}
+
+/// Half the plate in the occluder's shadow gives half its light, and half hidden from the
+/// observer likewise; for an occluder facing up, down or two-sided (rays see both sides
+/// of a triangle) and a plate of 2 or 18 triangles. Tolerance: the request's 1e-3
+/// relative, times 3 (the sampler's error is within a few tolerances, see
+/// `refinement_converges_with_tolerance`).
+#[test]
+fn half_shadowed_and_half_hidden_plate() {
+    let (near, far) = dirs();
+    for occ in [Occluder::FacingUp, Occluder::FacingDown, Occluder::TwoSided] {
+        for cells in [1, 3] {
+            for (what, l, v) in [("shadow", near, far), ("occlusion", far, near)] {
+                let (e, area) = half_result(l, v, cells, occ, 1e-3);
+                let exact = half_exact(l, v);
+                assert!(
+                    rel(e, exact) < 3e-3,
+                    "{what}, {occ:?}, {cells} cells: {e:e} vs {exact:e}"
+                );
+                assert!(
+                    (area - 2.0).abs() < 6e-3,
+                    "{what}, {occ:?}: lit and seen area {area} m² of 4"
+                );
+            }
+        }
+    }
+    // with the Sun and the observer both on the far side the occluder's shadow and its
+    // view projection both miss the plate: all of it is lit and seen, exactly
+    let v = dir(40f64.to_radians(), 0.7 + PI);
+    let (mesh, mats) = half_scene(near, 1, 0.5, Occluder::FacingUp);
+    let r = glint::simulate(&scene(mesh, mats, vec![epoch(far, v * RANGE)]));
+    let e = &r.epochs[0];
+    assert!(
+        rel(e.irradiance_w_m2, 2.0 * half_exact(far, v)) < 1e-12,
+        "{e:?}"
+    );
+    assert!((e.lit_visible_area_m2 - 4.0).abs() < 1e-12, "{e:?}");
+}
+
+/// Adaptive refinement converges as the tolerance shrinks: the error against the exact
+/// half falls (0.1 → 1e-2 → 1e-4) and stays within 5× the tolerance from 0.1 down to
+/// 1e-4 (measured: 0.6× at 0.1, 1.6× at 1e-2, 2.6–3.3× at 3e-3, 1–1.5× at 1e-3, 4.3×
+/// at 1e-4).
+#[test]
+fn refinement_converges_with_tolerance() {
+    let (near, far) = dirs();
+    for (what, l, v) in [("shadow", near, far), ("occlusion", far, near)] {
+        let exact = half_exact(l, v);
+        let tols = [0.1, 0.03, 0.01, 3e-3, 1e-3, 3e-4, 1e-4];
+        let errs: Vec<f64> = tols
+            .iter()
+            .map(|&t| rel(half_result(l, v, 1, Occluder::FacingUp, t).0, exact))
+            .collect();
+        for (t, e) in tols.iter().zip(&errs) {
+            assert!(
+                *e <= 5.0 * t,
+                "{what}: error {e:.2e} at tolerance {t:e} (all: {errs:?})"
+            );
+        }
+        assert!(
+            errs[6] < errs[2] && errs[2] < errs[0],
+            "{what}: not converging: {errs:?}"
+        );
+    }
+}
+
+/// The same below 1e-4: the error should keep following the tolerance.
+#[test]
+#[ignore = "engine: error 3.4e-4 at tolerance 1e-5 and 1e-6 (34x, 340x): the sampler's error falls like √tol, not tol (see box_wing_panel_in_the_bus_shadow_within_tolerance and the test report)"]
+fn refinement_follows_tiny_tolerances() {
+    let (near, far) = dirs();
+    for t in [1e-5, 1e-6] {
+        let e = rel(
+            half_result(near, far, 1, Occluder::FacingUp, t).0,
+            half_exact(near, far),
+        );
+        assert!(e <= 5.0 * t, "error {e:.2e} at tolerance {t:e}");
+    }
+}
+
+/// The box-wing with a black bus and dish, lit panels (albedo 0.25, two-sided), the Sun
+/// along (1, −cot ε, 0): light crosses the 2 m bus towards +y at ε to the panels' plane
+/// (x = 0), so the bus's shadow covers the +y panel (y from 1.5 to 6.5 m, z from −1 to 1)
+/// up to y = 1 + cot ε (the boom's shadow lies inside it; the dish is above the panels'
+/// z range; the −y panel is fully lit). The observer on the +x side at 17° elevation sees
+/// both panels whole. `mirror` flips x and y: Sun from −x, shadow on the −y panel.
+/// Returns (irradiance, exact irradiance, lit area, exact lit area).
+fn box_wing_panels(cot: f64, tol: f64, mirror: bool) -> (f64, f64, f64, f64) {
+    let m = if mirror { -1.0 } else { 1.0 };
+    let sun = DVec3::new(m, -m * cot, 0.0).normalize();
+    let v = DVec3::new(m, 0.0, 0.3).normalize();
+    let request = serde_json::json!({
+        "object": { "mesh": { "builtin": "box-wing" }, "materials": [
+            { "name": "body", "model": "lambert", "albedo": 0.0 },
+            { "name": "panel", "model": "lambert", "albedo": 0.25, "two_sided": true },
+            { "name": "dish", "model": "lambert", "albedo": 0.0, "two_sided": true }
+        ] },
+        "epochs": [ { "t": 0, "sun": sun.to_array(), "observer": (v * RANGE).to_array() } ],
+        "illumination": { "earthshine": "off" },
+        "tolerance": tol
+    });
+    let r = glint::simulate(&from_json(&request));
+    assert_sane(&r);
+    assert!(r.summary.rays > 0, "a shadowed panel needs rays");
+    let lit = 20.0 - 2.0 * (1.0 + cot - 1.5);
+    let exact = es_default() * 0.25 / PI * lit * sun.x.abs() * v.x.abs() / (RANGE * RANGE);
+    (
+        r.epochs[0].irradiance_w_m2,
+        exact,
+        r.epochs[0].lit_visible_area_m2,
+        lit,
+    )
+}
+
+/// The box-wing's panel in the bus's shadow converges to the exact lit area as the
+/// tolerance shrinks, for shadow edges on and off the panel's sample grid (cot ε = 3
+/// puts the edge at y = 4 m, the panel's midline: exactly half the +y panel), and in the
+/// mirror configuration. Bound: 2e-3 at tolerance 1e-5 (measured 5e-6–1e-3) and a fall
+/// of at least 10× from tolerance 0.1 (measured 1.5e-2–1e-1 there).
+#[test]
+fn box_wing_panel_in_the_bus_shadow_converges() {
+    for cot in [3.0, 2.77, 3.1] {
+        let (e0, exact, _, _) = box_wing_panels(cot, 0.1, false);
+        let (e1, _, area, lit) = box_wing_panels(cot, 1e-5, false);
+        assert!(rel(e1, exact) < 2e-3, "cot ε {cot}: {e1:e} vs {exact:e}");
+        assert!(
+            rel(e1, exact) < 0.1 * rel(e0, exact).max(1e-2),
+            "cot ε {cot}: {e0:e} → {e1:e} vs {exact:e}"
+        );
+        assert!(
+            (area - lit).abs() < 2e-3 * lit,
+            "cot ε {cot}: area {area} vs {lit}"
+        );
+    }
+    let (a, _, _, _) = box_wing_panels(3.0, 1e-5, false);
+    let (b, exact, _, _) = box_wing_panels(3.0, 1e-5, true);
+    assert!(
+        rel(b, exact) < 2e-3 && rel(a, exact) < 2e-3,
+        "{a:e} {b:e} {exact:e}"
+    );
+}
+
+/// The case at the default tolerance: a panel half in the bus's shadow gives
+/// half its light, within a few tolerances of the unshadowed signal.
+#[test]
+#[ignore = "engine: at tolerance 1e-3 the panel's lit area is off by 0.5-1.5 % (cot ε 2.77-3.1), 5-15x the tolerance, and the same at 3e-3: each leaf of min_area = tol·U/w may cost tol·U, and a shadow edge crosses ~L/√min_area leaves, so the error grows like √tol; see the test report"]
+fn box_wing_panel_in_the_bus_shadow_within_tolerance() {
+    for cot in [3.0, 2.77, 3.1] {
+        for tol in [1e-2, 1e-3] {
+            let (e, exact, _, lit) = box_wing_panels(cot, tol, false);
+            // the unshadowed signal is 20 m² of panel against `lit`
+            let unshadowed = exact * 20.0 / lit;
+            assert!(
+                (e - exact).abs() < 3.0 * tol * unshadowed,
+                "cot ε {cot}, tolerance {tol}: {e:e} vs {exact:e}"
+            );
+        }
+    }
+}

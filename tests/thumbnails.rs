@@ -453,3 +453,17 @@ fn views_along_the_body_axes_see_the_object() {
         );
     }
 }
+
+#[test]
+fn rendering_stops_when_cancelled() {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let scene = plate_scene([0.0, 0.0, 1.0], [0.1, 0.2, 1.0], serde_json::json!({}));
+    let r = Renderer::new(&scene);
+    let epoch = &scene.epochs[0];
+    assert!(r.render_until(epoch, 64, 1, &|| true).is_none());
+    // cancelled after a few rows: the partial image is not returned
+    let checks = AtomicUsize::new(0);
+    let late = || checks.fetch_add(1, Ordering::Relaxed) >= 4;
+    assert!(r.render_until(epoch, 64, 1, &late).is_none());
+    assert!(r.render_until(epoch, 64, 1, &|| false).is_some());
+}

@@ -157,13 +157,14 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
     }
     let epochs: Vec<EpochResult> = epochs.into_iter().map(|e| e.ok_or(Cancelled)).collect::<Result<_, _>>()?;
     // Images only when asked for: a light curve without them pays nothing.
-    let thumbnails = scene
-        .thumbnails
-        .as_ref()
-        .map(|spec| crate::render::Renderer::with_faces(scene, prepared.faces.clone()).thumbnails(spec));
-    if progress.is_cancelled() {
-        return Err(Cancelled);
-    }
+    let thumbnails = match &scene.thumbnails {
+        None => None,
+        Some(spec) => Some(
+            crate::render::Renderer::with_faces(scene, prepared.faces.clone())
+                .thumbnails_until(spec, &|| progress.is_cancelled())
+                .ok_or(Cancelled)?,
+        ),
+    };
     Ok(Response {
         summary: Summary {
             epochs: epochs.len(),

@@ -121,6 +121,19 @@ impl<'a> Renderer<'a> {
     /// Renders `epoch` on a `size`×`size` image with `samples`×`samples` stratified,
     /// jittered samples per pixel.
     pub fn render(&self, epoch: &Epoch, size: u32, samples: u32) -> RadiometricImage {
+        self.render_until(epoch, size, samples, &|| false)
+            .expect("never cancelled")
+    }
+
+    /// [`Self::render`], giving up (`None`) once `cancelled` returns true (checked per
+    /// row, so a large image stops promptly).
+    pub fn render_until(
+        &self,
+        epoch: &Epoch,
+        size: u32,
+        samples: u32,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> Option<RadiometricImage> {
         let size = size.max(1);
         let n = samples.max(1);
         let range = epoch.observer.length();
@@ -151,6 +164,9 @@ impl<'a> Renderer<'a> {
             .par_chunks_mut(w)
             .enumerate()
             .map(|(row, out)| {
+                if cancelled() {
+                    return (0.0, 0.0, 0);
+                }
                 let (mut sum, mut var, mut rays) = (0.0, 0.0, 0u64);
                 let mut prev = 0.0;
                 for (col, px) in out.iter_mut().enumerate() {
@@ -182,7 +198,10 @@ impl<'a> Renderer<'a> {
         let (sum_radiance, sum_variance, rays) = rows
             .iter()
             .fold((0.0, 0.0, 0), |a, r| (a.0 + r.0, a.1 + r.1, a.2 + r.2));
-        RadiometricImage {
+        if cancelled() {
+            return None;
+        }
+        Some(RadiometricImage {
             camera,
             size,
             samples: n,
@@ -191,20 +210,31 @@ impl<'a> Renderer<'a> {
             sum_radiance,
             sum_variance,
             rays,
-        }
+        })
     }
 
     /// Renders the scene's requested thumbnails (`scene.thumbnails`, or `spec`) as PNGs.
     pub fn thumbnails(&self, spec: &Thumbnails) -> Vec<Thumbnail> {
+        self.thumbnails_until(spec, &|| false)
+            .expect("never cancelled")
+    }
+
+    /// [`Self::thumbnails`], giving up (`None`) once `cancelled` returns true.
+    pub fn thumbnails_until(
+        &self,
+        spec: &Thumbnails,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> Option<Vec<Thumbnail>> {
         let images: Vec<RadiometricImage> = spec
             .epochs
             .par_iter()
-            .map(|&i| self.render(&self.scene.epochs[i], spec.size, spec.samples))
-            .collect();
+            .map(|&i| self.render_until(&self.scene.epochs[i], spec.size, spec.samples, cancelled))
+            .collect::<Option<_>>()?;
         let radiances: Vec<&[f32]> = images.iter().map(|im| im.radiance.as_slice()).collect();
         let whites = exposure::white_levels(spec.exposure, &radiances);
         let b64 = base64::engine::general_purpose::STANDARD;
-        spec.epochs
+        let thumbnails = spec
+            .epochs
             .par_iter()
             .zip(images.par_iter())
             .zip(whites.par_iter())
@@ -219,7 +249,8 @@ impl<'a> Renderer<'a> {
                     png_base64: b64.encode(png::encode_grey(&grey, img.size)),
                 }
             })
-            .collect()
+            .collect();
+        Some(thumbnails)
     }
 }
 

@@ -530,3 +530,40 @@ fn a_light_curve_over_the_request_timeout_is_stopped_and_frees_its_slot() {
         "{m}"
     );
 }
+
+#[test]
+fn a_light_curve_is_answered_while_a_long_job_runs() {
+    // Two slots: one for the job, one for light curves.
+    let server = Server::start("share", |c| c.limits.max_concurrent = 2);
+    let big = scene_request_repeated("box-wing", 40_000);
+    let job = post_json(server.addr, "/v1/jobs", &big).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let start = std::time::Instant::now();
+    while get(server.addr, &format!("/v1/jobs/{job}")).json()["epochs_done"]
+        .as_u64()
+        .unwrap()
+        == 0
+    {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "the job never started"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // The light curve does not queue behind the job's epochs: it is answered while the
+    // job (minutes of work in a debug build) is still running.
+    let r = post_json(
+        server.addr,
+        "/v1/lightcurves",
+        &scene_request("box-wing", 4),
+    );
+    assert_eq!(r.status, 200, "{}", r.text());
+    let s = get(server.addr, &format!("/v1/jobs/{job}")).json();
+    assert_eq!(s["state"], "running", "{s}");
+    assert_eq!(
+        http(server.addr, "DELETE", &format!("/v1/jobs/{job}"), &[], b"").status,
+        200
+    );
+}

@@ -107,7 +107,6 @@ pub fn run_default() -> anyhow::Result<()> {
 /// Runs the service until SIGTERM or Ctrl-C, then shuts down gracefully.
 pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
     let config = args.config()?;
-    lower_compute_priority();
     let rt = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
@@ -130,33 +129,6 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
         eprintln!("glint: shutting down");
         running.shutdown().await
     })
-}
-
-/// Builds rayon's global pool (the engine's epochs run there) with threads at nice 10, so
-/// when light curves saturate the cores the async runtime still gets the CPU at once:
-/// health checks and small requests stay fast. Throughput is unchanged (nothing else
-/// competes for the cores); only who goes first on a wake-up changes.
-fn lower_compute_priority() {
-    let _ = rayon::ThreadPoolBuilder::new()
-        .thread_name(|i| format!("glint-compute-{i}"))
-        .start_handler(|_| {
-            #[cfg(target_os = "linux")]
-            {
-                extern "C" {
-                    fn setpriority(
-                        which: std::ffi::c_int,
-                        who: std::ffi::c_uint,
-                        prio: std::ffi::c_int,
-                    ) -> std::ffi::c_int;
-                }
-                // PRIO_PROCESS (0) with who = 0: on Linux, the calling thread only.
-                // SAFETY: plain libc call with constant arguments; failure is harmless.
-                unsafe {
-                    setpriority(0, 0, 10);
-                }
-            }
-        })
-        .build_global();
 }
 
 async fn shutdown_signal() {

@@ -125,6 +125,8 @@ pub struct Jobs {
     store: Arc<Store>,
     slots: Arc<Slots>,
     metrics: Arc<Metrics>,
+    /// The job pool (see [`super::threads`]).
+    pool: Arc<rayon::ThreadPool>,
     limits: ServiceLimits,
     ttl: Duration,
     table: Mutex<HashMap<String, Entry>>,
@@ -157,6 +159,7 @@ impl Jobs {
         store: Arc<Store>,
         slots: Arc<Slots>,
         metrics: Arc<Metrics>,
+        pool: Arc<rayon::ThreadPool>,
         limits: ServiceLimits,
         ttl: Duration,
     ) -> Result<Arc<Jobs>, StoreError> {
@@ -184,6 +187,7 @@ impl Jobs {
             store,
             slots,
             metrics,
+            pool,
             job_slots: Arc::new(Semaphore::new(limits.max_running_jobs.max(1))),
             limits,
             ttl,
@@ -453,7 +457,7 @@ impl Jobs {
             let scene = validate::parse_request(text)
                 .and_then(|r| Scene::from_request(&r, &me.limits.job_limits()))
                 .map_err(|e| e.to_string())?;
-            match simulate_with(&scene, &progress) {
+            match me.pool.install(|| simulate_with(&scene, &progress)) {
                 Ok(resp) => {
                     let json = serde_json::to_vec(&resp).map_err(|e| e.to_string())?;
                     Ok(Some((json, resp.epochs.len())))

@@ -2,8 +2,8 @@
 //!
 //! ```text
 //! metrics ─▶ JSON errors ─▶ timeout ─▶ auth ─▶ body limit ─▶ routes
-//!                                                  ├─ /v1/lightcurves: validate → slot → engine (blocking pool)
-//!                                                  ├─ /v1/jobs…: jobs (durable queue, redb store)
+//!                                                  ├─ /v1/lightcurves: validate → slot → engine (light-curve pool)
+//!                                                  ├─ /v1/jobs…: jobs (durable queue, redb store, job pool)
 //!                                                  └─ /v1/scenes, /healthz, /readyz, /metrics, /docs
 //! ```
 //! No physics here: the engine ([`crate::simulate_with`]) and its validation
@@ -17,6 +17,7 @@ pub mod openapi;
 pub mod routes;
 pub mod scenes;
 pub mod store;
+pub mod threads;
 
 use axum::extract::{DefaultBodyLimit, Request, State};
 use axum::http::{header, HeaderValue, StatusCode};
@@ -75,6 +76,7 @@ pub struct AppState {
     pub jobs: Arc<Jobs>,
     pub metrics: Arc<Metrics>,
     pub store: Arc<Store>,
+    pub pools: threads::Pools,
 }
 
 /// The documented routes, with their OpenAPI paths.
@@ -130,6 +132,10 @@ fn constant_time_eq(a: &[u8], b: &[u8]) -> bool {
     a.len() == b.len() && a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
 }
 
+fn num_cores() -> usize {
+    std::thread::available_parallelism().map_or(2, |n| n.get())
+}
+
 /// Opens the store, restarts unfinished jobs and builds the router. Runs inside the tokio
 /// runtime (the job manager spawns its tasks).
 pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
@@ -137,10 +143,12 @@ pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
     let limits = config.limits.clone();
     let slots = Arc::new(Slots::new(limits.max_concurrent, limits.max_queued));
     let metrics = Arc::new(Metrics::default());
+    let pools = threads::Pools::new(num_cores())?;
     let jobs = Jobs::start(
         store.clone(),
         slots.clone(),
         metrics.clone(),
+        pools.jobs.clone(),
         limits.clone(),
         config.result_ttl,
     )?;
@@ -150,6 +158,7 @@ pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
         jobs,
         metrics: metrics.clone(),
         store,
+        pools,
     };
     let (router, spec) = api_router().split_for_parts();
     let token: Option<Arc<str>> = config

@@ -156,9 +156,10 @@ pub async fn post_lightcurve(
     let work = async {
         let slot = st.slots.acquire().await.map_err(|_| ApiError::busy(1))?;
         let p = progress.clone();
+        let pool = st.pools.sync.clone();
         tokio::task::spawn_blocking(move || {
             let _slot = slot; // released when the computation has really ended
-            let resp = simulate_with(&scene, &p).ok()?;
+            let resp = pool.install(|| simulate_with(&scene, &p)).ok()?;
             let n = resp.epochs.len();
             let bytes = if csv {
                 to_csv(&resp).into_bytes()

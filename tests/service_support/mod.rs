@@ -33,7 +33,13 @@ impl Reply {
 }
 
 /// One request on a fresh connection (`Connection: close`), the whole answer read.
-pub fn http(addr: SocketAddr, method: &str, path: &str, headers: &[(&str, &str)], body: &[u8]) -> Reply {
+pub fn http(
+    addr: SocketAddr,
+    method: &str,
+    path: &str,
+    headers: &[(&str, &str)],
+    body: &[u8],
+) -> Reply {
     let mut s = TcpStream::connect(addr).expect("connect");
     s.set_read_timeout(Some(Duration::from_secs(120))).unwrap();
     let mut head = format!("{method} {path} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n");
@@ -59,7 +65,14 @@ fn parse(raw: &[u8]) -> Reply {
         .unwrap_or_else(|| panic!("no header end in {:?}", String::from_utf8_lossy(raw)));
     let head = std::str::from_utf8(&raw[..end]).unwrap();
     let mut lines = head.split("\r\n");
-    let status: u16 = lines.next().unwrap().split(' ').nth(1).unwrap().parse().unwrap();
+    let status: u16 = lines
+        .next()
+        .unwrap()
+        .split(' ')
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
     let headers: Vec<(String, String)> = lines
         .filter_map(|l| l.split_once(':'))
         .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
@@ -73,7 +86,8 @@ fn parse(raw: &[u8]) -> Reply {
         let mut rest = &body[..];
         loop {
             let nl = rest.windows(2).position(|w| w == b"\r\n").unwrap();
-            let size = usize::from_str_radix(std::str::from_utf8(&rest[..nl]).unwrap().trim(), 16).unwrap();
+            let size = usize::from_str_radix(std::str::from_utf8(&rest[..nl]).unwrap().trim(), 16)
+                .unwrap();
             if size == 0 {
                 break;
             }
@@ -82,7 +96,11 @@ fn parse(raw: &[u8]) -> Reply {
         }
         body = out;
     }
-    Reply { status, headers, body }
+    Reply {
+        status,
+        headers,
+        body,
+    }
 }
 
 pub fn get(addr: SocketAddr, path: &str) -> Reply {
@@ -90,7 +108,13 @@ pub fn get(addr: SocketAddr, path: &str) -> Reply {
 }
 
 pub fn post_json(addr: SocketAddr, path: &str, body: &str) -> Reply {
-    http(addr, "POST", path, &[("Content-Type", "application/json")], body.as_bytes())
+    http(
+        addr,
+        "POST",
+        path,
+        &[("Content-Type", "application/json")],
+        body.as_bytes(),
+    )
 }
 
 /// A fresh, empty directory under the system temp dir.
@@ -144,7 +168,9 @@ impl Drop for Server {
 
 /// The example request `scenes/<name>.json` cut to its first `n` epochs.
 pub fn scene_request(name: &str, n: usize) -> String {
-    let text = std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let text =
+        std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR")))
+            .unwrap();
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let epochs = v["epochs"].as_array_mut().unwrap();
     epochs.truncate(n);
@@ -153,7 +179,9 @@ pub fn scene_request(name: &str, n: usize) -> String {
 
 /// The example request `scenes/<name>.json` with its epochs repeated to `n` epochs.
 pub fn scene_request_repeated(name: &str, n: usize) -> String {
-    let text = std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let text =
+        std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR")))
+            .unwrap();
     let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let epochs = v["epochs"].as_array().unwrap().clone();
     v["epochs"] = epochs.iter().cycle().take(n).cloned().collect();
@@ -162,12 +190,18 @@ pub fn scene_request_repeated(name: &str, n: usize) -> String {
 
 /// The engine's own answer to a request, computed directly.
 pub fn direct(request: &str) -> glint::Response {
-    let scene = glint::Scene::from_json(request, &glint::Limits::unlimited()).expect("valid request");
+    let scene =
+        glint::Scene::from_json(request, &glint::Limits::unlimited()).expect("valid request");
     glint::simulate(&scene)
 }
 
 /// Polls a job until it reaches a final state (or `limit` passes), returning its status.
-pub fn wait_final(addr: SocketAddr, id: &str, headers: &[(&str, &str)], limit: Duration) -> serde_json::Value {
+pub fn wait_final(
+    addr: SocketAddr,
+    id: &str,
+    headers: &[(&str, &str)],
+    limit: Duration,
+) -> serde_json::Value {
     let start = std::time::Instant::now();
     loop {
         let r = http(addr, "GET", &format!("/v1/jobs/{id}"), headers, b"");

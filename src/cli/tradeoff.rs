@@ -152,7 +152,19 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         "the whole `simulate` call (preparation included) over {} epochs on this machine.",
         scene.epochs.len()
     );
-    let _ = writeln!(md, "{check_line}.\n");
+    let _ = writeln!(md, "{check_line}.");
+    let _ = writeln!(
+        md,
+        "Regenerate: `glint tradeoff {} --out {}{}{}`.\n",
+        args.request.display(),
+        args.out.display(),
+        if args.every > 1 {
+            format!(" --every {}", args.every)
+        } else {
+            String::new()
+        },
+        if args.quick { " --quick" } else { "" }
+    );
     let _ = writeln!(
         md,
         "| method | setting | max error | RMS error | ms/epoch | rays/epoch |"

@@ -75,12 +75,10 @@ where
         .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
         .map_err(e)?;
     let sci = |v: &f64| format!("{v:.0e}");
+    // plain decimals (0.01, 0.1, 1, 10) on the time axis
     let ms = |v: &f64| {
-        if *v >= 1.0 {
-            format!("{v:.0}")
-        } else {
-            format!("{v:.1e}")
-        }
+        let digits = (-v.log10()).ceil().max(0.0) as usize;
+        format!("{v:.digits$}")
     };
     chart
         .configure_mesh()

@@ -73,7 +73,8 @@ impl<'a> Prepared<'a> {
     /// Merges faces, detects convexity, builds the BVH if rays are needed.
     pub fn new(scene: &'a Scene) -> Prepared<'a> {
         let per_triangle = scene.method == Method::Centroid;
-        let faces = Faces::build(&scene.mesh, !per_triangle);
+        let mut faces = Faces::build(&scene.mesh, !per_triangle);
+        faces.sort_spatially();
         let two_sided = faces
             .faces
             .iter()

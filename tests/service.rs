@@ -567,3 +567,25 @@ fn a_light_curve_is_answered_while_a_long_job_runs() {
         200
     );
 }
+
+#[test]
+fn finished_jobs_expire_after_the_time_to_live() {
+    let server = Server::start("ttl", |c| c.result_ttl = Duration::from_secs(1));
+    let r = post_json(server.addr, "/v1/jobs", &scene_request("plate", 3));
+    let id = r.json()["id"].as_str().unwrap().to_string();
+    let s = wait_final(server.addr, &id, &[], Duration::from_secs(60));
+    assert_eq!(s["state"], "done");
+    assert!(s["expires_at"].is_string(), "{s}");
+    // The sweeper runs every second here; give it ample time.
+    let start = std::time::Instant::now();
+    while get(server.addr, &format!("/v1/jobs/{id}")).status != 404 {
+        assert!(start.elapsed() < Duration::from_secs(30), "never expired");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{id}/result")),
+        404,
+        Some("id"),
+    );
+    assert_eq!(get(server.addr, "/v1/jobs").json(), serde_json::json!([]));
+}

@@ -17,6 +17,10 @@ struct Proc {
 
 /// Starts `glint serve` on a free loopback port and reads the port from its first line.
 fn spawn(dir: &Path) -> Proc {
+    spawn_with(dir, &[])
+}
+
+fn spawn_with(dir: &Path, extra: &[&str]) -> Proc {
     let mut child = Command::new(env!("CARGO_BIN_EXE_glint"))
         .args([
             "serve",
@@ -27,6 +31,7 @@ fn spawn(dir: &Path) -> Proc {
             "--data-dir",
         ])
         .arg(dir)
+        .args(extra)
         .env_remove("GLINT_API_TOKEN")
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -159,4 +164,34 @@ fn glint_openapi_prints_the_committed_spec() {
         out.stdout == committed,
         "`glint openapi` differs from openapi/openapi.json"
     );
+}
+
+#[test]
+fn a_stored_job_over_the_new_limits_fails_with_the_reason() {
+    let dir = temp_dir("limits");
+    let mut p = spawn(&dir);
+    // A long job keeps the only job slot; the second waits, queued, when the server dies.
+    let long = post_json(
+        p.addr,
+        "/v1/jobs",
+        &scene_request_repeated("box-wing", 20_000),
+    );
+    assert_eq!(long.status, 202);
+    let small = post_json(p.addr, "/v1/jobs", &scene_request("box-wing", 50));
+    assert_eq!(small.status, 202);
+    let id = small.json()["id"].as_str().unwrap().to_string();
+    p.child.kill().unwrap();
+    p.child.wait().unwrap();
+
+    // Restarted with a lower epoch limit, the stored job cannot run: it fails, and says why.
+    let mut p = spawn_with(&dir, &["--max-job-epochs", "40"]);
+    let s = wait_final(p.addr, &id, &[], Duration::from_secs(120));
+    assert_eq!(s["state"], "failed", "{s}");
+    let error = s["error"].as_str().unwrap();
+    assert!(error.contains("epochs"), "{error}");
+    assert!(s["finished_at"].is_string(), "{s}");
+    assert_eq!(get(p.addr, &format!("/v1/jobs/{id}/result")).status, 409);
+    p.child.kill().unwrap();
+    p.child.wait().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -213,7 +213,14 @@ pub async fn start(config: Config) -> anyhow::Result<Running> {
             config.addr
         );
     }
-    let listener = tokio::net::TcpListener::bind(config.addr).await?;
+    let listener = tokio::net::TcpListener::bind(config.addr)
+        .await
+        .map_err(|e| {
+            anyhow::anyhow!(
+                "cannot listen on {}: {e} (choose another with --addr)",
+                config.addr
+            )
+        })?;
     let addr = listener.local_addr()?;
     let (router, state) = build(&config)?;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();

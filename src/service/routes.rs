@@ -398,7 +398,7 @@ pub struct Health {
 }
 
 /// Liveness: the process answers HTTP. No authentication.
-#[utoipa::path(get, path = "/healthz", tag = "operations",
+#[utoipa::path(get, path = "/healthz", tag = "operations", security(()),
     responses((status = 200, description = "Alive", body = Health)))]
 pub async fn healthz() -> Json<Health> {
     Json(Health {
@@ -407,7 +407,7 @@ pub async fn healthz() -> Json<Health> {
 }
 
 /// Readiness: the store answers and the service is not shutting down. No authentication.
-#[utoipa::path(get, path = "/readyz", tag = "operations",
+#[utoipa::path(get, path = "/readyz", tag = "operations", security(()),
     responses(
         (status = 200, description = "Ready", body = Health),
         (status = 503, description = "Not ready", body = Health),

@@ -1,19 +1,28 @@
 //! Runs the box-wing request on a finer mesh and more epochs, to measure time and memory
 //! at scale: `cargo run --release --example scale -- FLAT_LEVELS DISH_RINGS DISH_SECTORS EPOCHS`
-//! (e.g. `6 5 24 10000` gives a 0.6 M-triangle box-wing; wrap in `/usr/bin/time -v` for memory).
+//! (e.g. `7 5 24 10000` gives a 0.85 M-triangle box-wing; wrap in `/usr/bin/time -v` for
+//! memory). `FLAT_LEVELS` = `sphere:L` uses a convex icosphere of 20·4^L triangles instead.
 
 use glint::geometry::builtin;
 use glint::scene::{Limits, Scene};
 
 fn main() {
-    let args: Vec<u32> = std::env::args().skip(1).map(|a| a.parse().expect("integer arguments")).collect();
+    let mut raw: Vec<String> = std::env::args().skip(1).collect();
+    let sphere = raw.first().and_then(|a| a.strip_prefix("sphere:")).map(|l| l.parse::<u32>().expect("sphere level"));
+    if sphere.is_some() {
+        raw[0] = "0".into();
+    }
+    let args: Vec<u32> = raw.iter().map(|a| a.parse().expect("integer arguments")).collect();
     let [flat, rings, sectors, epochs] = args[..] else {
         eprintln!("usage: scale FLAT_LEVELS DISH_RINGS DISH_SECTORS EPOCHS");
         std::process::exit(2);
     };
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/box-wing.json")).unwrap();
     let mut scene = Scene::from_json(&text, &Limits::unlimited()).unwrap();
-    scene.mesh = builtin::box_wing_with(rings, sectors, flat);
+    scene.mesh = match sphere {
+        Some(level) => builtin::icosphere(level, 1.0),
+        None => builtin::box_wing_with(rings, sectors, flat),
+    };
     let base = scene.epochs.clone();
     scene.epochs = (0..epochs as usize).map(|i| base[i % base.len()]).collect();
     let r = glint::simulate(&scene);

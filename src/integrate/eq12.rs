@@ -152,8 +152,8 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                 // Leaf size at which a sampling error of the whole leaf costs at most
                 // the tolerance's share of the epoch's signal.
                 let weight = lf.sun + lf.earth;
-                let min_area = scene.tolerance * unshadowed / weight;
-                let (a_sun, a_earth, n) = vis.visible_area(&mut scratch.visibility, lf.face as usize, lf.side, &dirs, min_area);
+                let budget = scene.tolerance * unshadowed / weight;
+                let (a_sun, a_earth, n) = vis.visible_area(&mut scratch.visibility, lf.face as usize, lf.side, &dirs, budget);
                 rays += n;
                 (a_sun / face.area, a_earth / face.area)
             }

@@ -48,6 +48,8 @@ struct FaceGeom {
     /// Point on the plane (centroid), m.
     centroid: DVec3,
     radius: f64,
+    /// Area, m².
+    area: f64,
     two_sided: bool,
     /// Triangles to sample: the face's own, or — when the face is a convex polygon however
     /// finely it is meshed — a fan over its outline, so sampling cost follows the face's
@@ -105,8 +107,10 @@ impl Cache {
     }
 }
 
-/// Deepest refinement: leaves down to 4⁻¹⁰ ≈ 1e-6 of a triangle.
-const MAX_DEPTH: u32 = 10;
+/// Deepest refinement: leaves down to 2⁻¹⁶ of a triangle's size.
+const MAX_DEPTH: u32 = 16;
+/// K in the leaf size K·budget/√A (see [`Visibility::visible_area`]).
+const LEAF_SIZE_FACTOR: f64 = 8.0;
 /// Above this faces × vertices, patch relations come from bounding spheres (conservative)
 /// instead of every vertex.
 const EXACT_WORK: usize = 300_000_000;
@@ -135,6 +139,7 @@ impl Visibility {
                     normal: f.normal,
                     centroid: f.centroid,
                     radius: f.radius,
+                    area: f.area,
                     two_sided: scene.materials[f.material as usize].two_sided,
                     pieces: pieces_of(f.normal, f.area, &f.triangles, &corners, &vertices, mode),
                     vertices,
@@ -228,15 +233,15 @@ impl Visibility {
     }
 
     /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on
-    /// side `side` (+1 front, −1 back); plus the number of rays cast. `min_area` is the
-    /// leaf size (m²) below which refinement stops.
+    /// side `side` (+1 front, −1 back); plus the number of rays cast. `budget` (m²) is the
+    /// area of this face whose misclassification the tolerance allows.
     pub fn visible_area(
         &self,
         cache: &mut Cache,
         face: usize,
         side: f64,
         dirs: &Uncertain,
-        min_area: f64,
+        budget: f64,
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
         let n = f.normal * side;
@@ -245,7 +250,14 @@ impl Visibility {
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
         let area_of = |t: &[DVec3; 3]| 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
         let directions = [Some(dirs.view), dirs.sun, earth];
-        let mut s = Sampler::new(&self.occluder, n, directions, min_area);
+        // A shadow edge crosses about perimeter/h leaves of size h, each misjudged by a
+        // fraction of its area ~h²: the error ~ perimeter·h·c falls like h, so leaves stop
+        // at h = K·budget/√A (perimeter ≈ 4√A) and the error falls like the tolerance, not
+        // its square root. The corner-and-centroid estimate makes c small and the leaf
+        // errors cancel in part: K = 8 keeps the measured error at about a third of the
+        // tolerance (box-wing and trough against converged references).
+        let min_size = LEAF_SIZE_FACTOR * budget / f.area.sqrt();
+        let mut s = Sampler::new(&self.occluder, n, f.centroid, directions, min_size);
         if self.mode == VisibilityMode::Centroid {
             for c in &f.pieces {
                 let bits = s.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
@@ -457,24 +469,28 @@ fn patch_of(faces: &[FaceGeom], range: Range<u32>) -> Patch {
 struct Sampler<'a> {
     occluder: &'a Occluder,
     n: DVec3,
+    /// Face centroid: samples are nudged towards it (see [`Sampler::eval`]).
+    centre: DVec3,
     /// View, sun and earthshine directions (sun/earth absent when they do not light the face).
     dirs: [Option<DVec3>; 3],
     /// Possible blockers per direction; an empty list means the direction is clear.
     blockers: [Vec<Blocker>; 3],
-    min_area: f64,
+    /// Leaf diameter (m) below which refinement stops.
+    min_size: f64,
     rays: u64,
     a_sun: f64,
     a_earth: f64,
 }
 
 impl<'a> Sampler<'a> {
-    fn new(occluder: &'a Occluder, n: DVec3, dirs: [Option<DVec3>; 3], min_area: f64) -> Self {
+    fn new(occluder: &'a Occluder, n: DVec3, centre: DVec3, dirs: [Option<DVec3>; 3], min_size: f64) -> Self {
         Sampler {
             occluder,
             n,
+            centre,
             dirs,
             blockers: Default::default(),
-            min_area,
+            min_size,
             rays: 0,
             a_sun: 0.0,
             a_earth: 0.0,
@@ -485,6 +501,16 @@ impl<'a> Sampler<'a> {
     /// Rays are cast only for the directions in `check`.
     #[inline]
     fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
+        // A sample on the face's edge may lie in the plane of a neighbour that shares the
+        // edge; a ray from there would hit that neighbour at t ≈ 0. Nudge it into the face
+        // by the ray offset (scaled to the object) so edges see what the face's interior sees.
+        let towards = self.centre - p;
+        let len = towards.length();
+        let p = if len > 0.0 {
+            p + towards * (self.occluder.offset().min(0.5 * len) / len)
+        } else {
+            p
+        };
         let mut clear = [true; 3];
         for k in 0..3 {
             if let (true, Some(d)) = (check[k], self.dirs[k]) {
@@ -532,8 +558,9 @@ impl<'a> Sampler<'a> {
         // Pieces wider than the smallest possible blocker are split even when their
         // samples agree (a narrow shadow could fall between them), down to the
         // tolerance's leaf size, below which a missed sliver is within the error budget.
-        let forced = area > self.min_area && 2.0 * radius > feature;
-        if depth >= MAX_DEPTH || area <= self.min_area || (uniform && !forced) {
+        let size = 2.0 * radius;
+        let forced = size > self.min_size && size > feature;
+        if depth >= MAX_DEPTH || size <= self.min_size || (uniform && !forced) {
             // Leaf: corners weigh 1/6 each, the centroid 1/2 (exact for linear fields).
             let frac = |bit: u8| {
                 v.iter().map(|x| ((x >> bit) & 1) as f64).sum::<f64>() / 6.0 + ((vm >> bit) & 1) as f64 * 0.5

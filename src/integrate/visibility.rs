@@ -222,6 +222,14 @@ impl Visibility {
                     centre: o.centroid,
                     radius: o.radius,
                     normal: o.normal,
+                    // Width of shadow to hunt for: the blocker's radius. Its true width
+                    // (a thin strip's) would find narrower shadows, but the small faces of
+                    // a curved part then force fine sampling under their joint shadow,
+                    // which is wide: ~6x the rays on the box-wing. Known limit: a shadow
+                    // narrower than its caster's radius can fall between samples.
+                    feature: o.radius,
+                    // largest shadow it can cast on this face's plane
+                    shadow_area: o.area * d.dot(o.normal).abs() / n.dot(d).max(1e-3),
                 };
                 // half-space proof with the face's own vertices
                 if blocker.half_space_clear(d, &f.vertices, self.tol) {
@@ -257,7 +265,7 @@ impl Visibility {
         // errors cancel in part: K = 8 keeps the measured error at about a third of the
         // tolerance (box-wing and trough against converged references).
         let min_size = LEAF_SIZE_FACTOR * budget / f.area.sqrt();
-        let mut s = Sampler::new(&self.occluder, n, f.centroid, directions, min_size);
+        let mut s = Sampler::new(&self.occluder, n, f.centroid, directions, min_size, budget);
         if self.mode == VisibilityMode::Centroid {
             for c in &f.pieces {
                 let bits = s.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
@@ -297,6 +305,10 @@ struct Blocker {
     centre: DVec3,
     radius: f64,
     normal: DVec3,
+    /// Width of shadow to look for between samples, m (its bounding radius).
+    feature: f64,
+    /// Upper bound of its shadow's area on the face, m².
+    shadow_area: f64,
 }
 
 impl Blocker {
@@ -477,13 +489,15 @@ struct Sampler<'a> {
     blockers: [Vec<Blocker>; 3],
     /// Leaf diameter (m) below which refinement stops.
     min_size: f64,
+    /// Area of the face (m²) whose misclassification the tolerance allows.
+    budget: f64,
     rays: u64,
     a_sun: f64,
     a_earth: f64,
 }
 
 impl<'a> Sampler<'a> {
-    fn new(occluder: &'a Occluder, n: DVec3, centre: DVec3, dirs: [Option<DVec3>; 3], min_size: f64) -> Self {
+    fn new(occluder: &'a Occluder, n: DVec3, centre: DVec3, dirs: [Option<DVec3>; 3], min_size: f64, budget: f64) -> Self {
         Sampler {
             occluder,
             n,
@@ -491,6 +505,7 @@ impl<'a> Sampler<'a> {
             dirs,
             blockers: Default::default(),
             min_size,
+            budget,
             rays: 0,
             a_sun: 0.0,
             a_earth: 0.0,
@@ -531,7 +546,7 @@ impl<'a> Sampler<'a> {
         let m = (p[0] + p[1] + p[2]) / 3.0;
         let radius = p.iter().map(|q| q.distance(m)).fold(0.0, f64::max);
         // Which directions still have a blocker that can reach this piece, and the
-        // smallest such blocker (its shadow may be narrow).
+        // narrowest shadow such a blocker can cast.
         let mut check = [false; 3];
         let mut feature = f64::INFINITY;
         for k in 0..3 {
@@ -539,7 +554,10 @@ impl<'a> Sampler<'a> {
             for b in &self.blockers[k] {
                 if reaches(m, radius, b.centre, b.radius, d) && !b.half_space_clear(d, &p, tol) {
                     check[k] = true;
-                    feature = feature.min(b.radius);
+                    // a shadow too small to matter need not be hunted for
+                    if b.shadow_area > 0.5 * self.budget {
+                        feature = feature.min(b.feature);
+                    }
                 }
             }
         }
@@ -555,9 +573,9 @@ impl<'a> Sampler<'a> {
         };
         let vm = self.eval(m, check);
         let uniform = v[0] == vm && v[1] == vm && v[2] == vm;
-        // Pieces wider than the smallest possible blocker are split even when their
-        // samples agree (a narrow shadow could fall between them), down to the
-        // tolerance's leaf size, below which a missed sliver is within the error budget.
+        // Pieces wider than the narrowest possible shadow are split even when their
+        // samples agree (it could fall between them), down to the tolerance's leaf size,
+        // below which a missed sliver is within the error budget.
         let size = 2.0 * radius;
         let forced = size > self.min_size && size > feature;
         if depth >= MAX_DEPTH || size <= self.min_size || (uniform && !forced) {

@@ -1,0 +1,245 @@
+//! The command line as a user runs it: `glint simulate` on the shipped scenes writes a
+//! CSV with the header, a JSON response or an SVG plot; a bad request exits non-zero
+//! with the field named, never a panic.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+fn glint() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_glint"));
+    c.current_dir(env!("CARGO_MANIFEST_DIR"));
+    c
+}
+
+/// A fresh path in cargo's per-test scratch directory.
+fn tmp(name: &str) -> PathBuf {
+    let dir =
+        PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn run(args: &[&str]) -> Output {
+    glint().args(args).output().expect("run glint")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Epochs in a request file.
+fn epochs_in(path: &str) -> usize {
+    let text = std::fs::read_to_string(format!("{}/{path}", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["epochs"].as_array().unwrap().len()
+}
+
+/// The per-epoch fields, in the response's order.
+const COLUMNS: [&str; 11] = [
+    "t",
+    "irradiance_w_m2",
+    "sun_w_m2",
+    "earthshine_w_m2",
+    "intensity_w_sr",
+    "magnitude",
+    "magnitude_std",
+    "phase_angle_deg",
+    "range_m",
+    "lit_visible_area_m2",
+    "eclipse",
+];
+
+#[test]
+fn simulate_box_wing_to_csv() {
+    let out = tmp("box-wing.csv");
+    let o = run(&[
+        "simulate",
+        "scenes/box-wing.json",
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        summary.contains("epochs") && summary.contains("mag"),
+        "summary: {summary}"
+    );
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header, COLUMNS);
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), epochs_in("scenes/box-wing.json"));
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(row.len(), COLUMNS.len(), "row {i}");
+        for (cell, name) in row.iter().zip(COLUMNS) {
+            // an absent magnitude (no light) is an empty cell; everything else a finite number
+            if cell.is_empty() {
+                assert!(name.starts_with("magnitude"), "row {i}: empty {name}");
+            } else {
+                let x: f64 = cell
+                    .parse()
+                    .unwrap_or_else(|_| panic!("row {i}: {name} = {cell:?}"));
+                assert!(x.is_finite(), "row {i}: {name} = {cell}");
+            }
+        }
+    }
+}
+
+#[test]
+fn simulate_to_json_and_plot() {
+    let out = tmp("sphere.json");
+    let plot = tmp("sphere.svg");
+    let o = run(&[
+        "simulate",
+        "scenes/sphere.json",
+        "--out",
+        out.to_str().unwrap(),
+        "--plot",
+        plot.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).expect("valid JSON");
+    let epochs = v["epochs"].as_array().expect("epochs array");
+    assert_eq!(epochs.len(), epochs_in("scenes/sphere.json"));
+    for e in epochs {
+        for c in COLUMNS {
+            assert!(e.get(c).is_some(), "missing {c} in {e}");
+        }
+        assert!(e["irradiance_w_m2"].as_f64().is_some_and(f64::is_finite));
+    }
+    assert_eq!(v["summary"]["epochs"].as_u64(), Some(epochs.len() as u64));
+    assert!(v["summary"]["method"].is_string());
+    let svg = std::fs::read_to_string(&plot).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("</svg>"), "not an SVG");
+}
+
+#[test]
+fn request_on_standard_input() {
+    let mut child = glint()
+        .args([
+            "simulate",
+            "-",
+            "-q",
+            "--out",
+            tmp("stdin.csv").to_str().unwrap(),
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let text = std::fs::read(format!("{}/scenes/plate.json", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    child.stdin.take().unwrap().write_all(&text).unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(tmp("stdin.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + epochs_in("scenes/plate.json"));
+}
+
+/// A bad request: non-zero exit, the field and the problem on stderr, no panic, no output
+/// file.
+#[test]
+fn bad_requests_exit_non_zero_naming_the_field() {
+    let base = serde_json::json!({
+        "object": { "mesh": { "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "triangles": [[0, 1, 2]] },
+                    "materials": [ { "name": "a", "model": "lambert", "albedo": 0.3 } ] },
+        "epochs": [ { "t": 0, "sun": [0, 0, 1], "observer": [0, 0, 1e7] } ]
+    });
+    let cases: Vec<(&str, Box<dyn Fn(&mut serde_json::Value)>)> = vec![
+        (
+            "object.materials[0].albedo",
+            Box::new(|v| v["object"]["materials"][0]["albedo"] = (-0.3).into()),
+        ),
+        (
+            "object.materials[0].albdo",
+            Box::new(|v| v["object"]["materials"][0]["albdo"] = 0.3.into()),
+        ),
+        (
+            "object.mesh.triangles[0]",
+            Box::new(|v| v["object"]["mesh"]["triangles"][0] = serde_json::json!([0, 1, 7])),
+        ),
+        (
+            "object.mesh.material_ids[0]",
+            Box::new(|v| v["object"]["mesh"]["material_ids"] = serde_json::json!([3])),
+        ),
+        (
+            "epochs[0].sun",
+            Box::new(|v| v["epochs"][0]["sun"] = serde_json::json!([0, 0, 0])),
+        ),
+        (
+            "epochs[0].earth",
+            Box::new(|v| v["illumination"] = serde_json::json!({ "earthshine": "sphere" })),
+        ),
+        (
+            "object.mesh.triangles",
+            Box::new(|v| {
+                v["object"]["mesh"] = serde_json::json!({ "vertices": [], "triangles": [] })
+            }),
+        ),
+        (
+            "object.mesh.builtin",
+            Box::new(|v| v["object"]["mesh"] = serde_json::json!({ "builtin": "tardis" })),
+        ),
+        (
+            "object.materials[0].model",
+            Box::new(|v| v["object"]["materials"][0]["model"] = "chrome".into()),
+        ),
+        (
+            "illumination.earthshine",
+            Box::new(|v| v["illumination"] = serde_json::json!({ "earthshine": "moon" })),
+        ),
+        ("bogus", Box::new(|v| v["bogus"] = 1.into())),
+    ];
+    for (field, edit) in cases {
+        let mut v = base.clone();
+        edit(&mut v);
+        let req = tmp("bad.json");
+        std::fs::write(&req, v.to_string()).unwrap();
+        let out = tmp("bad-out.csv");
+        let _ = std::fs::remove_file(&out);
+        let o = run(&[
+            "simulate",
+            req.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "-q",
+        ]);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{field}: accepted");
+        assert!(
+            err.contains(field),
+            "{field}: stderr does not name it: {err}"
+        );
+        assert!(!err.contains("panicked"), "{field}: {err}");
+        assert!(!out.exists(), "{field}: wrote an output file");
+    }
+    // the control: the base request is fine
+    let req = tmp("good.json");
+    std::fs::write(&req, base.to_string()).unwrap();
+    assert!(run(&["simulate", req.to_str().unwrap(), "-q"])
+        .status
+        .success());
+}
+
+#[test]
+fn unreadable_or_malformed_files_exit_non_zero() {
+    let o = run(&["simulate", "scenes/no-such-file.json", "-q"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("no-such-file.json"), "{}", stderr(&o));
+    let req = tmp("broken.json");
+    std::fs::write(&req, "{ \"object\": ").unwrap();
+    let o = run(&["simulate", req.to_str().unwrap(), "-q"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("JSON"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("panicked"));
+    // an unknown subcommand or option
+    assert!(!run(&["simulat", "scenes/plate.json"]).status.success());
+    assert!(!run(&["simulate", "scenes/plate.json", "--outt", "x.csv"])
+        .status
+        .success());
+}

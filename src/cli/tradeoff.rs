@@ -24,6 +24,11 @@ pub struct TradeoffArgs {
     /// Tolerance of the reference adaptive run.
     #[arg(long, default_value_t = 1e-6)]
     pub reference_tolerance: f64,
+    /// The reference: `adaptive` (the finest adaptive run, checked by the image method on
+    /// every --check-every-th epoch) or `image` (the image method at --check-size on every
+    /// epoch, the finest adaptive run checked against it) where adaptive cannot be trusted.
+    #[arg(long, default_value = "adaptive", value_parser = ["adaptive", "image"])]
+    pub reference: String,
     /// Pixels on a side of the image run that checks the reference.
     #[arg(long, default_value_t = 1024)]
     pub check_size: u32,
@@ -61,40 +66,46 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
     eprintln!(
-        "{name}: {} epochs, {} triangles; reference: adaptive, tolerance {:e}",
+        "{name}: {} epochs, {} triangles",
         scene.epochs.len(),
-        scene.mesh.triangles.len(),
-        args.reference_tolerance
+        scene.mesh.triangles.len()
     );
 
-    let reference = methods::run(
-        &scene,
-        Setting::Adaptive {
-            tolerance: args.reference_tolerance,
-        },
-        0.0,
-    );
-    let check_scene = every_nth(&scene, args.check_every);
-    let check = methods::run(
-        &check_scene,
-        Setting::Image {
-            size: args.check_size,
-            samples: args.check_samples,
-        },
-        0.0,
-    );
-    let ref_subset: Vec<f64> = reference
-        .irradiance
-        .iter()
-        .step_by(args.check_every.max(1))
-        .copied()
-        .collect();
+    let finest = Setting::Adaptive {
+        tolerance: args.reference_tolerance,
+    };
+    let fine_image = Setting::Image {
+        size: args.check_size,
+        samples: args.check_samples,
+    };
+    let image_reference = args.reference == "image";
+    let (reference, check_scene, check_setting) = if image_reference {
+        // every epoch by image; the finest adaptive run is checked on all of them
+        (methods::run(&scene, fine_image, 0.0), scene.clone(), finest)
+    } else {
+        (
+            methods::run(&scene, finest, 0.0),
+            every_nth(&scene, args.check_every),
+            fine_image,
+        )
+    };
+    let check = methods::run(&check_scene, check_setting, 0.0);
+    let step = if image_reference {
+        1
+    } else {
+        args.check_every.max(1)
+    };
+    let ref_subset: Vec<f64> = reference.irradiance.iter().step_by(step).copied().collect();
     let agreement = methods::errors(&check.irradiance, &ref_subset);
+    let reference_label = format!(
+        "{} {}",
+        reference.setting.method().name(),
+        reference.setting.label()
+    );
     let check_line = format!(
-        "reference check: image {0} px x {1}x{1} samples against adaptive {2:e} on {3} epochs: max {4:.2e}, RMS {5:.2e} relative",
-        args.check_size,
-        args.check_samples,
-        args.reference_tolerance,
+        "reference: {reference_label}; check: {} {} on {} epochs differs from it by max {:.2e}, RMS {:.2e} relative",
+        check.setting.method().name(),
+        check.setting.label(),
         ref_subset.len(),
         agreement.max,
         agreement.rms
@@ -145,8 +156,12 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
     }
 
     let mut md = String::new();
-    let _ = writeln!(md, "Error against the reference (adaptive, tolerance {:e}) per epoch, relative to the epoch's irradiance", args.reference_tolerance);
-    let _ = writeln!(md, "(epochs darker than {:e} of the brightest: relative to {:e} of the brightest); time per epoch is", methods::ERROR_FLOOR, methods::ERROR_FLOOR);
+    let _ = writeln!(md, "Error against the reference ({reference_label}) per epoch, relative to the epoch's irradiance");
+    let _ = writeln!(
+        md,
+        "(epochs darker than {:e} of the median epoch: relative to that); time per epoch is",
+        methods::ERROR_FLOOR
+    );
     let _ = writeln!(
         md,
         "the whole `simulate` call (preparation included) over {} epochs on this machine.",
@@ -155,13 +170,18 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
     let _ = writeln!(md, "{check_line}.");
     let _ = writeln!(
         md,
-        "Regenerate: `glint tradeoff {} --out {}{}{}`.\n",
+        "Regenerate: `glint tradeoff {} --out {}{}{}{}`.\n",
         args.request.display(),
         args.out.display(),
         if args.every > 1 {
             format!(" --every {}", args.every)
         } else {
             String::new()
+        },
+        if image_reference {
+            " --reference image"
+        } else {
+            ""
         },
         if args.quick { " --quick" } else { "" }
     );

@@ -143,10 +143,14 @@ pub fn default_sweep(quick: bool) -> Vec<Setting> {
 }
 
 /// Relative error of each epoch of `values` against `reference` (W/m²): |E − E_ref| over
-/// max(E_ref, floor · max E_ref), so epochs where the object is nearly dark count against
-/// the curve's scale instead of dividing by almost nothing.
+/// max(E_ref, floor · median E_ref), so epochs where the object is nearly dark (eclipse)
+/// count against the curve's typical level instead of dividing by almost nothing. The
+/// median, not the maximum: a glint can be 1e5 times the rest of the curve, and measuring
+/// every other epoch against it would hide their errors.
 pub fn relative_errors(values: &[f64], reference: &[f64], floor: f64) -> Vec<f64> {
-    let scale = reference.iter().copied().fold(0.0, f64::max);
+    let mut sorted: Vec<f64> = reference.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let scale = sorted.get(sorted.len() / 2).copied().unwrap_or(0.0);
     values
         .iter()
         .zip(reference)
@@ -163,7 +167,7 @@ pub fn relative_errors(values: &[f64], reference: &[f64], floor: f64) -> Vec<f64
         .collect()
 }
 
-/// Darker epochs than this fraction of the brightest are measured against it.
+/// Darker epochs than this fraction of the median epoch are measured against it.
 pub const ERROR_FLOOR: f64 = 1e-3;
 
 /// One run of one setting: its light curve and what it cost.

@@ -141,6 +141,9 @@ fn request_on_standard_input() {
     assert_eq!(csv.lines().count(), 1 + epochs_in("scenes/plate.json"));
 }
 
+/// An edit that breaks a request.
+type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+
 /// A bad request: non-zero exit, the field and the problem on stderr, no panic, no output
 /// file.
 #[test]
@@ -150,7 +153,7 @@ fn bad_requests_exit_non_zero_naming_the_field() {
                     "materials": [ { "name": "a", "model": "lambert", "albedo": 0.3 } ] },
         "epochs": [ { "t": 0, "sun": [0, 0, 1], "observer": [0, 0, 1e7] } ]
     });
-    let cases: Vec<(&str, Box<dyn Fn(&mut serde_json::Value)>)> = vec![
+    let cases: Vec<(&str, Edit)> = vec![
         (
             "object.materials[0].albedo",
             Box::new(|v| v["object"]["materials"][0]["albedo"] = (-0.3).into()),

@@ -38,20 +38,35 @@ pub fn seed(earth_dir: DVec3, albedo: f64, sun_irradiance: f64) -> Earthshine {
     }
 }
 
+/// Beyond this many Earth radii the sphere model uses its far-field closed form.
+pub const FAR_FIELD_RADII: f64 = 50.0;
+
 /// The Earth as a sunlit Lambertian sphere, integrated over its visible cap.
 /// `earth` is the vector object → Earth centre (m), `sun_dir` the unit vector towards
 /// the Sun, `sun_irradiance` the band irradiance at the Earth (W/m²).
 pub fn sphere(earth: DVec3, sun_dir: DVec3, albedo: f64, sun_irradiance: f64) -> Earthshine {
     let d = earth.length();
     let e = earth / d;
+    if d > FAR_FIELD_RADII * EARTH_RADIUS_M {
+        // A small disk: its lit crescent would need a very fine grid, while the closed
+        // form — the Lambert-sphere phase law, from the Earth's centre — is within
+        // O(R_E/d) < 2 % of the exact integral (less than the grid's own error there).
+        let psi = (-e).dot(sun_dir).clamp(-1.0, 1.0).acos(); // Earth→object vs Earth→Sun
+        let law = 2.0 / (3.0 * PI) * ((PI - psi) * psi.cos() + psi.sin());
+        let irradiance = albedo * sun_irradiance * (EARTH_RADIUS_M / d).powi(2) * law.max(0.0);
+        return Earthshine {
+            beams: vec![Beam { dir: e, irradiance }],
+            shadow_dir: Some(e),
+        };
+    }
     let sin_a = (EARTH_RADIUS_M / d).min(1.0);
     let cos_a = (1.0 - sin_a * sin_a).max(0.0).sqrt();
     // Rings uniform in cosγ (equal solid angle) and sectors in azimuth; more of both
     // when the Earth looks large. The midpoint rule in cosγ integrates the cosine-
     // weighted cap exactly for uniform radiance (the view-factor check in PHYSICS.md).
     let angular_radius = sin_a.asin();
-    let rings = ((angular_radius / 0.06).ceil() as usize).clamp(3, 12);
-    let sectors = (rings * 3).max(8);
+    let rings = ((angular_radius / 0.05).ceil() as usize).clamp(4, 16);
+    let sectors = (rings * 4).max(16);
     let (t1, t2) = orthonormal_basis(e);
     let p_obj = -earth; // object position relative to the Earth's centre
     let radiance_scale = albedo * sun_irradiance / PI;

@@ -10,7 +10,9 @@ use glint::geometry::bvh::Occluder;
 use glint::scene::{Limits, Scene};
 
 fn box_wing_request() -> Scene {
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/box-wing.json")).unwrap();
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/box-wing.json"))
+            .unwrap();
     Scene::from_json(&text, &Limits::unlimited()).unwrap()
 }
 
@@ -21,22 +23,30 @@ fn box_wing_15k() -> glint::geometry::Mesh {
 }
 
 fn pool(threads: usize) -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap()
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
 }
 
 fn epochs_per_second(c: &mut Criterion) {
     let base = box_wing_request();
     let mut group = c.benchmark_group("box-wing shadows, tolerance 1e-3");
     group.sample_size(10);
-    for (label, mesh) in [("268 tris", base.mesh.clone()), ("15k tris", box_wing_15k())] {
+    for (label, mesh) in [
+        ("268 tris", base.mesh.clone()),
+        ("15k tris", box_wing_15k()),
+    ] {
         let mut scene = base.clone();
         scene.mesh = mesh;
         group.throughput(Throughput::Elements(scene.epochs.len() as u64));
         for threads in [1, 2] {
             let p = pool(threads);
-            group.bench_with_input(BenchmarkId::new(format!("{label}, epochs"), threads), &scene, |b, s| {
-                b.iter(|| p.install(|| glint::simulate(s)))
-            });
+            group.bench_with_input(
+                BenchmarkId::new(format!("{label}, epochs"), threads),
+                &scene,
+                |b, s| b.iter(|| p.install(|| glint::simulate(s))),
+            );
         }
     }
     group.finish();
@@ -87,7 +97,11 @@ fn rays_per_second(c: &mut Criterion) {
                 p.install(|| {
                     use rayon::prelude::*;
                     rays.par_chunks(1024)
-                        .map(|c| c.iter().filter(|(o, d)| occ.is_clear(*o, DVec3::ZERO, *d)).count())
+                        .map(|c| {
+                            c.iter()
+                                .filter(|(o, d)| occ.is_clear(*o, DVec3::ZERO, *d))
+                                .count()
+                        })
                         .sum::<usize>()
                 })
             })
@@ -96,5 +110,10 @@ fn rays_per_second(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, epochs_per_second, facet_epochs_per_second, rays_per_second);
+criterion_group!(
+    benches,
+    epochs_per_second,
+    facet_epochs_per_second,
+    rays_per_second
+);
 criterion_main!(benches);

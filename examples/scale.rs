@@ -8,16 +8,24 @@ use glint::scene::{Limits, Scene};
 
 fn main() {
     let mut raw: Vec<String> = std::env::args().skip(1).collect();
-    let sphere = raw.first().and_then(|a| a.strip_prefix("sphere:")).map(|l| l.parse::<u32>().expect("sphere level"));
+    let sphere = raw
+        .first()
+        .and_then(|a| a.strip_prefix("sphere:"))
+        .map(|l| l.parse::<u32>().expect("sphere level"));
     if sphere.is_some() {
         raw[0] = "0".into();
     }
-    let args: Vec<u32> = raw.iter().map(|a| a.parse().expect("integer arguments")).collect();
+    let args: Vec<u32> = raw
+        .iter()
+        .map(|a| a.parse().expect("integer arguments"))
+        .collect();
     let [flat, rings, sectors, epochs] = args[..] else {
         eprintln!("usage: scale FLAT_LEVELS DISH_RINGS DISH_SECTORS EPOCHS");
         std::process::exit(2);
     };
-    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/box-wing.json")).unwrap();
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/box-wing.json"))
+            .unwrap();
     let mut scene = Scene::from_json(&text, &Limits::unlimited()).unwrap();
     scene.mesh = match sphere {
         Some(level) => builtin::icosphere(level, 1.0),

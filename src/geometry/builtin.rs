@@ -69,18 +69,43 @@ pub fn to_obj(mesh: &Mesh, material_names: &[&str], comment: &str) -> String {
 pub fn icosphere(level: u32, r: f64) -> Mesh {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
     let mut vertices: Vec<DVec3> = [
-        (-1.0, t, 0.0), (1.0, t, 0.0), (-1.0, -t, 0.0), (1.0, -t, 0.0),
-        (0.0, -1.0, t), (0.0, 1.0, t), (0.0, -1.0, -t), (0.0, 1.0, -t),
-        (t, 0.0, -1.0), (t, 0.0, 1.0), (-t, 0.0, -1.0), (-t, 0.0, 1.0),
+        (-1.0, t, 0.0),
+        (1.0, t, 0.0),
+        (-1.0, -t, 0.0),
+        (1.0, -t, 0.0),
+        (0.0, -1.0, t),
+        (0.0, 1.0, t),
+        (0.0, -1.0, -t),
+        (0.0, 1.0, -t),
+        (t, 0.0, -1.0),
+        (t, 0.0, 1.0),
+        (-t, 0.0, -1.0),
+        (-t, 0.0, 1.0),
     ]
     .iter()
     .map(|&(x, y, z)| DVec3::new(x, y, z).normalize())
     .collect();
     let mut triangles: Vec<[u32; 3]> = vec![
-        [0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11],
-        [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6], [7, 1, 8],
-        [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9],
-        [4, 9, 5], [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1],
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
     ];
     for _ in 0..level {
         let mut midpoint = std::collections::HashMap::new();
@@ -186,7 +211,12 @@ pub fn box_wing_with(rings: u32, sectors: u32, flat_levels: u32) -> Mesh {
     // booms: 0.1 m square, from the bus to the panels
     for s in [-1.0, 1.0] {
         let (y0, y1) = if s > 0.0 { (1.0, 1.5) } else { (-1.5, -1.0) };
-        push_box(&mut mesh, DVec3::new(-0.05, y0, -0.05), DVec3::new(0.05, y1, 0.05), 0);
+        push_box(
+            &mut mesh,
+            DVec3::new(-0.05, y0, -0.05),
+            DVec3::new(0.05, y1, 0.05),
+            0,
+        );
     }
     // panels: 5 m x 2 m in the x = 0 plane, normal +x (two-sided material)
     for s in [-1.0, 1.0] {
@@ -203,7 +233,12 @@ pub fn box_wing_with(rings: u32, sectors: u32, flat_levels: u32) -> Mesh {
         );
     }
     // dish: paraboloid z = z0 + r²/(4f), rim radius 0.8 m, opening +z, on a mast
-    push_box(&mut mesh, DVec3::new(-0.05, -0.05, 1.0), DVec3::new(0.05, 0.05, 1.2), 0);
+    push_box(
+        &mut mesh,
+        DVec3::new(-0.05, -0.05, 1.0),
+        DVec3::new(0.05, 0.05, 1.2),
+        0,
+    );
     let mut mesh = subdivide(&mesh, flat_levels);
     let (z0, f, rim) = (1.2, 0.8, 0.8);
     let base = mesh.vertices.len() as u32;
@@ -212,8 +247,11 @@ pub fn box_wing_with(rings: u32, sectors: u32, flat_levels: u32) -> Mesh {
         let r = rim * i as f64 / rings as f64;
         for j in 0..sectors {
             let phi = TAU * j as f64 / sectors as f64;
-            mesh.vertices
-                .push(DVec3::new(r * phi.cos(), r * phi.sin(), z0 + r * r / (4.0 * f)));
+            mesh.vertices.push(DVec3::new(
+                r * phi.cos(),
+                r * phi.sin(),
+                z0 + r * r / (4.0 * f),
+            ));
         }
     }
     let ring = |i: u32, j: u32| base + 1 + (i - 1) * sectors + (j % sectors);
@@ -224,8 +262,10 @@ pub fn box_wing_with(rings: u32, sectors: u32, flat_levels: u32) -> Mesh {
     }
     for i in 1..rings {
         for j in 0..sectors {
-            mesh.triangles.push([ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)]);
-            mesh.triangles.push([ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)]);
+            mesh.triangles
+                .push([ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)]);
+            mesh.triangles
+                .push([ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)]);
             mesh.material_ids.extend([2, 2]);
         }
     }
@@ -253,7 +293,8 @@ pub fn subdivide(mesh: &Mesh, levels: u32) -> Mesh {
             let ab = mid(a, b, &mut next.vertices);
             let bc = mid(b, c, &mut next.vertices);
             let ca = mid(c, a, &mut next.vertices);
-            next.triangles.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+            next.triangles
+                .extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
             next.material_ids.extend([m; 4]);
         }
         out = next;

@@ -73,7 +73,12 @@ impl Occluder {
     /// Distance to the first hit along the ray from `origin` (not offset), or `None`.
     /// Used by the renderer and tests.
     pub fn first_hit(&self, origin: DVec3, dir: DVec3) -> Option<(f64, usize)> {
-        let ray = Ray::new(to_f32(origin - self.centre), dir_f32(dir), 0.0, f32::INFINITY);
+        let ray = Ray::new(
+            to_f32(origin - self.centre),
+            dir_f32(dir),
+            0.0,
+            f32::INFINITY,
+        );
         let mut hit = obvhs::ray::RayHit::none();
         if self
             .bvh

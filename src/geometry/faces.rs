@@ -109,8 +109,14 @@ impl Faces {
         if n < 2 {
             return;
         }
-        let lo = self.faces.iter().fold(DVec3::splat(f64::INFINITY), |a, f| a.min(f.centroid));
-        let hi = self.faces.iter().fold(DVec3::splat(f64::NEG_INFINITY), |a, f| a.max(f.centroid));
+        let lo = self
+            .faces
+            .iter()
+            .fold(DVec3::splat(f64::INFINITY), |a, f| a.min(f.centroid));
+        let hi = self
+            .faces
+            .iter()
+            .fold(DVec3::splat(f64::NEG_INFINITY), |a, f| a.max(f.centroid));
         let ext = (hi - lo).max(DVec3::splat(1e-300));
         self.faces.sort_by_cached_key(|f| {
             let q = ((f.centroid - lo) / ext * 1023.0).as_uvec3();

@@ -21,7 +21,10 @@ pub fn parse(text: &str, material_names: &[&str]) -> Result<Mesh, String> {
     }
     // tobj resolves `usemtl` only through a material library, so hand it one made of
     // our material names; any `mtllib` in the text is ignored in its favour.
-    let mtl: String = material_names.iter().map(|n| format!("newmtl {n}\n")).collect();
+    let mtl: String = material_names
+        .iter()
+        .map(|n| format!("newmtl {n}\n"))
+        .collect();
     let body: String = text
         .lines()
         .filter(|l| !l.trim_start().starts_with("mtllib"))
@@ -43,8 +46,7 @@ pub fn parse(text: &str, material_names: &[&str]) -> Result<Mesh, String> {
         let m = &model.mesh;
         let base = mesh.vertices.len() as u32;
         for p in m.positions.chunks_exact(3) {
-            mesh.vertices
-                .push(DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            mesh.vertices.push(DVec3::new(p[0], p[1], p[2]));
         }
         let material = m.material_id.unwrap_or(0) as u32;
         for t in m.indices.chunks_exact(3) {

@@ -9,6 +9,7 @@
 //!   direction points away from that plane (d·n > 0), a ray from the face only moves
 //!   further from the plane and can never cross the occluder (likewise behind / towards).
 //!   This is what keeps a concave dish lit from in front free of rays.
+//!
 //! Faces are grouped into spatial *patches* (with bounding spheres and normal cones), so
 //! whole groups of occluders are dismissed at once; only faces with an unproven direction
 //! are sampled with rays, refining each triangle adaptively (4-way splits) until either the
@@ -132,8 +133,16 @@ impl Visibility {
             .iter()
             .enumerate()
             .map(|(i, f)| {
-                let mut vertices: Vec<DVec3> = f.triangles.iter().flat_map(|&t| corners[t as usize]).collect();
-                vertices.sort_by(|a, b| a.to_array().partial_cmp(&b.to_array()).unwrap_or(std::cmp::Ordering::Equal));
+                let mut vertices: Vec<DVec3> = f
+                    .triangles
+                    .iter()
+                    .flat_map(|&t| corners[t as usize])
+                    .collect();
+                vertices.sort_by(|a, b| {
+                    a.to_array()
+                        .partial_cmp(&b.to_array())
+                        .unwrap_or(std::cmp::Ordering::Equal)
+                });
                 vertices.dedup();
                 FaceGeom {
                     normal: f.normal,
@@ -162,7 +171,8 @@ impl Visibility {
                 .map(|q| {
                     (0..patches.len() as u32)
                         .filter_map(|p| {
-                            let (q_faces, p_faces) = (&patches[q].faces, &patches[p as usize].faces);
+                            let (q_faces, p_faces) =
+                                (&patches[q].faces, &patches[p as usize].faces);
                             if !may_block(&geoms, q_faces, p_faces, tol) {
                                 return None;
                             }
@@ -202,7 +212,14 @@ impl Visibility {
 
     /// Face-level: collects into `out` the faces of the flagged patches that may block
     /// `face` (side normal `n`) along `d`.
-    fn face_blockers(&self, face: usize, n: DVec3, flagged: &[u32], d: DVec3, out: &mut Vec<Blocker>) {
+    fn face_blockers(
+        &self,
+        face: usize,
+        n: DVec3,
+        flagged: &[u32],
+        d: DVec3,
+        out: &mut Vec<Blocker>,
+    ) {
         let f = &self.faces[face];
         for &p in flagged {
             for g in self.patches[p as usize].faces.clone() {
@@ -321,7 +338,9 @@ impl Blocker {
             return false;
         }
         let s = dn.signum();
-        points.iter().all(|v| s * self.normal.dot(*v - self.centre) >= -tol)
+        points
+            .iter()
+            .all(|v| s * self.normal.dot(*v - self.centre) >= -tol)
     }
 }
 
@@ -359,10 +378,15 @@ fn pieces_of(
     let mut hull: Vec<(f64, f64, usize)> = Vec::new();
     for pass in 0..2 {
         let start = hull.len();
-        let iter: Box<dyn Iterator<Item = &(f64, f64, usize)>> =
-            if pass == 0 { Box::new(pts.iter()) } else { Box::new(pts.iter().rev()) };
+        let iter: Box<dyn Iterator<Item = &(f64, f64, usize)>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
         for p in iter {
-            while hull.len() >= start + 2 && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0 {
+            while hull.len() >= start + 2
+                && cross(&hull[hull.len() - 2], &hull[hull.len() - 1], p) <= 0.0
+            {
                 hull.pop();
             }
             hull.push(*p);
@@ -372,12 +396,16 @@ fn pieces_of(
     if hull.len() < 3 {
         return own();
     }
-    let hull_area: f64 = (1..hull.len() - 1).map(|i| 0.5 * cross(&hull[0], &hull[i], &hull[i + 1])).sum();
+    let hull_area: f64 = (1..hull.len() - 1)
+        .map(|i| 0.5 * cross(&hull[0], &hull[i], &hull[i + 1]))
+        .sum();
     if (hull_area - area).abs() > 1e-9 * area {
         return own(); // not convex (or holes): sample the mesh's triangles
     }
     let v = |h: &(f64, f64, usize)| vertices[h.2];
-    (1..hull.len() - 1).map(|i| [v(&hull[0]), v(&hull[i]), v(&hull[i + 1])]).collect()
+    (1..hull.len() - 1)
+        .map(|i| [v(&hull[0]), v(&hull[i]), v(&hull[i + 1])])
+        .collect()
 }
 
 /// Does the sphere (c_o, r_o) meet the half-infinite cylinder swept by the sphere
@@ -417,7 +445,13 @@ fn may_block(geoms: &[FaceGeom], q_faces: &Range<u32>, p_faces: &Range<u32>, tol
 }
 
 /// Where the receiver faces lie relative to every plane of the occluder faces.
-fn relation(geoms: &[FaceGeom], q_faces: &Range<u32>, p_faces: &Range<u32>, tol: f64, exact: bool) -> Side {
+fn relation(
+    geoms: &[FaceGeom],
+    q_faces: &Range<u32>,
+    p_faces: &Range<u32>,
+    tol: f64,
+    exact: bool,
+) -> Side {
     let (mut front, mut behind) = (true, true);
     for gi in p_faces.clone() {
         let g = &geoms[gi as usize];
@@ -449,12 +483,23 @@ fn relation(geoms: &[FaceGeom], q_faces: &Range<u32>, p_faces: &Range<u32>, tol:
 }
 
 fn patch_of(faces: &[FaceGeom], range: Range<u32>) -> Patch {
-    let pts = || faces.iter().flat_map(|f| [f.centroid - DVec3::splat(f.radius), f.centroid + DVec3::splat(f.radius)]);
-    let (lo, hi) = pts().fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
-        (lo.min(p), hi.max(p))
-    });
+    let pts = || {
+        faces.iter().flat_map(|f| {
+            [
+                f.centroid - DVec3::splat(f.radius),
+                f.centroid + DVec3::splat(f.radius),
+            ]
+        })
+    };
+    let (lo, hi) = pts().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), p| (lo.min(p), hi.max(p)),
+    );
     let centre = 0.5 * (lo + hi);
-    let radius = faces.iter().map(|f| f.centroid.distance(centre) + f.radius).fold(0.0, f64::max);
+    let radius = faces
+        .iter()
+        .map(|f| f.centroid.distance(centre) + f.radius)
+        .fold(0.0, f64::max);
     let sum: DVec3 = faces.iter().map(|f| f.normal).sum();
     let (axis, sin_half) = if sum.length_squared() < 1e-12 {
         (DVec3::Z, 2.0)
@@ -497,7 +542,14 @@ struct Sampler<'a> {
 }
 
 impl<'a> Sampler<'a> {
-    fn new(occluder: &'a Occluder, n: DVec3, centre: DVec3, dirs: [Option<DVec3>; 3], min_size: f64, budget: f64) -> Self {
+    fn new(
+        occluder: &'a Occluder,
+        n: DVec3,
+        centre: DVec3,
+        dirs: [Option<DVec3>; 3],
+        min_size: f64,
+        budget: f64,
+    ) -> Self {
         Sampler {
             occluder,
             n,
@@ -527,8 +579,8 @@ impl<'a> Sampler<'a> {
             p
         };
         let mut clear = [true; 3];
-        for k in 0..3 {
-            if let (true, Some(d)) = (check[k], self.dirs[k]) {
+        for (k, (&c, d)) in check.iter().zip(self.dirs).enumerate() {
+            if let (true, Some(d)) = (c, d) {
                 self.rays += 1;
                 clear[k] = self.occluder.is_clear(p, self.n, d);
                 if k == 0 && !clear[0] {
@@ -549,11 +601,11 @@ impl<'a> Sampler<'a> {
         // narrowest shadow such a blocker can cast.
         let mut check = [false; 3];
         let mut feature = f64::INFINITY;
-        for k in 0..3 {
-            let Some(d) = self.dirs[k] else { continue };
-            for b in &self.blockers[k] {
+        for ((needed, dir), blockers) in check.iter_mut().zip(self.dirs).zip(&self.blockers) {
+            let Some(d) = dir else { continue };
+            for b in blockers {
                 if reaches(m, radius, b.centre, b.radius, d) && !b.half_space_clear(d, &p, tol) {
-                    check[k] = true;
+                    *needed = true;
                     // a shadow too small to matter need not be hunted for
                     if b.shadow_area > 0.5 * self.budget {
                         feature = feature.min(b.feature);
@@ -569,7 +621,11 @@ impl<'a> Sampler<'a> {
         }
         let v = match values {
             Some(v) => v,
-            None => [self.eval(p[0], check), self.eval(p[1], check), self.eval(p[2], check)],
+            None => [
+                self.eval(p[0], check),
+                self.eval(p[1], check),
+                self.eval(p[2], check),
+            ],
         };
         let vm = self.eval(m, check);
         let uniform = v[0] == vm && v[1] == vm && v[2] == vm;
@@ -581,7 +637,8 @@ impl<'a> Sampler<'a> {
         if depth >= MAX_DEPTH || size <= self.min_size || (uniform && !forced) {
             // Leaf: corners weigh 1/6 each, the centroid 1/2 (exact for linear fields).
             let frac = |bit: u8| {
-                v.iter().map(|x| ((x >> bit) & 1) as f64).sum::<f64>() / 6.0 + ((vm >> bit) & 1) as f64 * 0.5
+                v.iter().map(|x| ((x >> bit) & 1) as f64).sum::<f64>() / 6.0
+                    + ((vm >> bit) & 1) as f64 * 0.5
             };
             self.a_sun += frac(0) * area;
             self.a_earth += frac(1) * area;
@@ -590,7 +647,11 @@ impl<'a> Sampler<'a> {
         let ab = 0.5 * (p[0] + p[1]);
         let bc = 0.5 * (p[1] + p[2]);
         let ca = 0.5 * (p[2] + p[0]);
-        let (vab, vbc, vca) = (self.eval(ab, check), self.eval(bc, check), self.eval(ca, check));
+        let (vab, vbc, vca) = (
+            self.eval(ab, check),
+            self.eval(bc, check),
+            self.eval(ca, check),
+        );
         let q = 0.25 * area;
         self.refine([p[0], ab, ca], Some([v[0], vab, vca]), q, depth + 1, tol);
         self.refine([ab, p[1], bc], Some([vab, v[1], vbc]), q, depth + 1, tol);

@@ -23,7 +23,11 @@ fn planck_cumulative(x: f64) -> f64 {
         for n in 1..=200 {
             let nf = n as f64;
             let e = (-nf * x).exp();
-            let term = e * (x.powi(3) / nf + 3.0 * x * x / nf.powi(2) + 6.0 * x / nf.powi(3) + 6.0 / nf.powi(4));
+            let term = e
+                * (x.powi(3) / nf
+                    + 3.0 * x * x / nf.powi(2)
+                    + 6.0 * x / nf.powi(3)
+                    + 6.0 / nf.powi(4));
             tail += term;
             if term < 1e-17 * tail {
                 break;

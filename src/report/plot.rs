@@ -17,12 +17,20 @@ pub fn magnitude_svg(response: &Response, title: &str) -> Result<String, String>
     let (t0, t1) = min_max(points.iter().map(|p| p.0));
     let (m0, m1) = min_max(points.iter().map(|p| p.1));
     let pad = ((m1 - m0) * 0.05).max(0.05);
-    let (t0, t1) = if t1 > t0 { (t0, t1) } else { (t0 - 1.0, t1 + 1.0) };
+    let (t0, t1) = if t1 > t0 {
+        (t0, t1)
+    } else {
+        (t0 - 1.0, t1 + 1.0)
+    };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 500)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let caption = format!("{title} — {} epochs, {}", response.epochs.len(), response.summary.method.split(':').next().unwrap_or(""));
+        let caption = format!(
+            "{title} — {} epochs, {}",
+            response.epochs.len(),
+            response.summary.method.split(':').next().unwrap_or("")
+        );
         let mut chart = ChartBuilder::on(&root)
             .caption(caption, ("sans-serif", 18))
             .margin(12)
@@ -61,5 +69,7 @@ pub fn magnitude_svg(response: &Response, title: &str) -> Result<String, String>
 }
 
 fn min_max(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)))
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    })
 }

@@ -119,6 +119,8 @@ pub struct MeshSpec {
 /// or `preset`.
 #[derive(Debug, Clone, Serialize, ToSchema)]
 #[serde(untagged)]
+// One per material in a request: boxing the large variant would buy nothing.
+#[allow(clippy::large_enum_variant)]
 pub enum MaterialSpec {
     /// A preset by name: `seed-body-wrap` or `seed-white-paint` (the paper's §5.1).
     Preset(String),

@@ -1,8 +1,10 @@
 //! Ray casting against the mesh: the only file that knows obvhs.
 //!
 //! obvhs works in f32. Vertices are stored relative to the mesh's bounding-sphere
-//! centre, so f32 resolution is set by the object's size, never by the range to the
-//! observer, and ray origins are offset by a distance scaled to the object.
+//! centre and divided by its radius, so f32 resolution is set by the object's size,
+//! never by the range to the observer, and obvhs' absolute epsilons (it skips BVH nodes
+//! within 1e-4 of a ray's origin) become relative to the object: a millimetre part
+//! shadows like a metre one. Ray origins are offset by a distance scaled to the object.
 
 use super::mesh::Mesh;
 use glam::{DVec3, Vec3A};
@@ -18,6 +20,8 @@ pub struct Occluder {
     /// Triangles in BVH primitive order (so a callback's id indexes this directly).
     tris: Vec<Triangle>,
     centre: DVec3,
+    /// Bounding radius, m: BVH coordinates are (x − centre)/radius.
+    radius: f64,
     /// Offset of ray origins off the surface, m (scaled to the object).
     offset: f64,
 }
@@ -26,13 +30,15 @@ impl Occluder {
     /// Builds the BVH once per request.
     pub fn build(mesh: &Mesh) -> Occluder {
         let (centre, radius) = mesh.bounding_sphere();
+        let radius = radius.max(f64::MIN_POSITIVE);
+        let local = |p: DVec3| to_f32((p - centre) / radius);
         let tris: Vec<Triangle> = (0..mesh.triangles.len())
             .map(|i| {
                 let [a, b, c] = mesh.corners(i);
                 Triangle {
-                    v0: to_f32(a - centre),
-                    v1: to_f32(b - centre),
-                    v2: to_f32(c - centre),
+                    v0: local(a),
+                    v1: local(b),
+                    v2: local(c),
                 }
             })
             .collect();
@@ -49,9 +55,10 @@ impl Occluder {
             bvh,
             tris,
             centre,
-            // f32 carries ~6e-8 of the object's size; 2e-5 keeps well clear of that
-            // (no acne) while staying far below any feature size we model.
-            offset: 2e-5 * radius.max(f64::MIN_POSITIVE),
+            radius,
+            // f32 carries ~6e-8 of the object's size; 1e-6 (16 ulps) keeps clear of that
+            // (no acne) while shifting shadow edges by no more than that.
+            offset: 1e-6 * radius,
         }
     }
 
@@ -64,7 +71,7 @@ impl Occluder {
     /// facing `dir`) towards `dir` (unit) leaves the object without hitting anything.
     #[inline]
     pub fn is_clear(&self, origin: DVec3, normal: DVec3, dir: DVec3) -> bool {
-        let o = origin - self.centre + normal * self.offset;
+        let o = (origin - self.centre + normal * self.offset) / self.radius;
         let ray = Ray::new(to_f32(o), dir_f32(dir), 0.0, f32::INFINITY);
         self.bvh
             .ray_traverse_miss(ray, |ray, id| self.tris[id].intersect(ray))
@@ -74,7 +81,7 @@ impl Occluder {
     /// Used by the renderer and tests.
     pub fn first_hit(&self, origin: DVec3, dir: DVec3) -> Option<(f64, usize)> {
         let ray = Ray::new(
-            to_f32(origin - self.centre),
+            to_f32((origin - self.centre) / self.radius),
             dir_f32(dir),
             0.0,
             f32::INFINITY,
@@ -85,7 +92,7 @@ impl Occluder {
             .ray_traverse(ray, &mut hit, |ray, id| self.tris[id].intersect(ray))
         {
             let prim = self.bvh.primitive_indices[hit.primitive_id as usize] as usize;
-            Some((hit.t as f64, prim))
+            Some((hit.t as f64 * self.radius, prim))
         } else {
             None
         }

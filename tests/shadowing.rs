@@ -249,7 +249,6 @@ fn box_wing_panel_in_the_bus_shadow_within_tolerance() {
 /// A small black triangle far from the plate (10 m to 1 km away, below it: it casts no
 /// shadow and sends no light) changes nothing about the plate's light.
 #[test]
-#[ignore = "engine bug (integrate/visibility.rs Sampler::eval): samples are nudged towards the face centroid by the ray offset, 2e-5 of the whole object's radius: a triangle 1 km away nudges them by 1 cm and the half-shadowed plate loses 2.4 % (0.2 % at 100 m); nudge only edge samples, by an amount scaled to the face, not the object"]
 fn distant_triangle_changes_nothing() {
     let (near, far) = dirs();
     let exact = half_exact(near, far);

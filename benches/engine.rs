@@ -56,7 +56,7 @@ fn facet_epochs_per_second(c: &mut Criterion) {
     let mut scene = box_wing_request();
     scene.mesh = builtin::icosphere(5, 1.0); // 20480 faces, convex: no rays
     scene.materials.truncate(1); // seed-microfacet body wrap
-    scene.epochs.truncate(100);
+    scene.epochs.truncate(1000);
     let faces = scene.mesh.triangles.len() as u64 * scene.epochs.len() as u64;
     let mut group = c.benchmark_group("convex sphere, seed BRDF");
     group.sample_size(10);

@@ -7,22 +7,30 @@ use rayon::prelude::*;
 
 /// Largest faces × vertices product checked exactly (all vertices behind every face).
 const EXACT_LIMIT: usize = 400_000_000;
+/// Below this faces × vertices product the exact test is cheaper than building edges.
+const CHEAP_EXACT: usize = 20_000_000;
 
 /// True when every vertex lies on or behind the plane of every face (within a tolerance
 /// relative to the object's size). That is the exact condition for no self-shadowing of
-/// one-sided faces. Above [`EXACT_LIMIT`] the test is the local one — closed, every edge
-/// convex — which implies global convexity for a closed connected surface (Tietze);
-/// meshes failing either test are treated as non-convex, which only costs rays.
+/// one-sided faces. Large meshes first try the local test — closed, connected, every
+/// edge convex — which implies global convexity (Tietze's theorem) in linear time; meshes
+/// failing every test are treated as non-convex, which only costs rays.
 pub fn is_convex(mesh: &Mesh, faces: &Faces) -> bool {
     let (_, scale) = mesh.bounding_sphere();
     let tol = 1e-9 * scale;
-    if faces.len().saturating_mul(mesh.vertices.len()) <= EXACT_LIMIT {
+    let work = faces.len().saturating_mul(mesh.vertices.len());
+    let exact = || {
         faces.faces.par_iter().all(|f| {
             let d = f.normal.dot(f.centroid);
             mesh.vertices.iter().all(|v| f.normal.dot(*v) - d <= tol)
         })
+    };
+    if work <= CHEAP_EXACT {
+        exact()
+    } else if locally_convex_and_closed(mesh, tol) {
+        true
     } else {
-        locally_convex_and_closed(mesh, tol)
+        work <= EXACT_LIMIT && exact()
     }
 }
 
@@ -37,6 +45,24 @@ fn locally_convex_and_closed(mesh: &Mesh, tol: f64) -> bool {
                 .or_default()
                 .push((t as u32, tri[(k + 2) % 3]));
         }
+    }
+    // one connected surface: two convex bodies side by side can shadow each other
+    let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
+    fn root(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            p[x as usize] = p[p[x as usize] as usize];
+            x = p[x as usize];
+        }
+        x
+    }
+    for adj in edges.values() {
+        if let [(a, _), (b, _)] = adj[..] {
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+    if (0..parent.len() as u32).any(|t| root(&mut parent, t) != 0) {
+        return false;
     }
     edges.values().all(|adj| {
         if adj.len() != 2 {

@@ -229,7 +229,7 @@ impl Visibility {
                 }
                 let o = &self.faces[g];
                 // the occluder must reach in front of the face's lit/seen side
-                if n.dot(o.centroid - f.centroid) + o.radius <= self.tol {
+                if !reaches_front(o, n, f.centroid, self.tol) {
                     continue;
                 }
                 if !reaches(f.centroid, f.radius, o.centroid, o.radius, d) {
@@ -439,9 +439,26 @@ fn may_block(geoms: &[FaceGeom], q_faces: &Range<u32>, p_faces: &Range<u32>, tol
             }
             let g = &geoms[gi as usize];
             let s = f.normal.dot(g.centroid - f.centroid);
-            s + g.radius > tol || (f.two_sided && -s + g.radius > tol)
+            if s.abs() >= g.radius + tol {
+                return s > 0.0 || f.two_sided; // wholly on one side: the sphere decides
+            }
+            reaches_front(g, f.normal, f.centroid, tol)
+                || (f.two_sided && reaches_front(g, -f.normal, f.centroid, tol))
         })
     })
+}
+
+/// Does some vertex of `o` lie strictly in front of the plane (`n`, through `p`)? Exact,
+/// so the neighbours of a face on a convex part are not taken for occluders.
+#[inline]
+fn reaches_front(o: &FaceGeom, n: DVec3, p: DVec3, tol: f64) -> bool {
+    if n.dot(o.centroid - p) + o.radius <= tol {
+        return false;
+    }
+    if o.vertices.is_empty() {
+        return true; // no vertex list (centroid mode): the sphere's answer
+    }
+    o.vertices.iter().any(|v| n.dot(*v - p) > tol)
 }
 
 /// Where the receiver faces lie relative to every plane of the occluder faces.

@@ -45,7 +45,8 @@ pub struct EpochLight {
 impl EpochLight {
     pub fn at(ill: &Illumination, epoch: &Epoch) -> EpochLight {
         let l = epoch.sun;
-        let es_full = sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
+        let es_full =
+            sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
         let (hidden, earthshine) = match epoch.earth {
             None => (0.0, earth::Earthshine::default()),
             Some(e) => {
@@ -135,34 +136,70 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     let mut lit_visible_area = 0.0;
     let mut rays = 0u64;
     if let Some(img) = &p.image {
-        let lit = scratch.lit.iter().map(|lf| (lf.face, lf.side, lf.sun > 0.0, lf.earth > 0.0));
-        rays += img.sample(&mut scratch.image, &p.faces, lit, v, l, earthshine.shadow_dir);
+        let lit = scratch
+            .lit
+            .iter()
+            .map(|lf| (lf.face, lf.side, lf.sun > 0.0, lf.earth > 0.0));
+        rays += img.sample(
+            &mut scratch.image,
+            &p.faces,
+            lit,
+            v,
+            l,
+            earthshine.shadow_dir,
+        );
     }
-    for lf in &scratch.lit {
-        let face = &p.faces.faces[lf.face as usize];
-        let (f_sun, f_earth) = match &p.visibility {
-            _ if p.image.is_some() => scratch.image.fractions(lf.face as usize, face.area),
-            None => (1.0, 1.0),
-            Some(vis) => {
-                let dirs = Uncertain {
-                    view: v,
-                    sun: (lf.sun > 0.0).then_some(l),
-                    earth: if lf.earth > 0.0 { earthshine.shadow_dir } else { None },
-                };
-                // Leaf size at which a sampling error of the whole leaf costs at most
-                // the tolerance's share of the epoch's signal.
-                let weight = lf.sun + lf.earth;
-                let budget = scene.tolerance * unshadowed / weight;
-                let (a_sun, a_earth, n) = vis.visible_area(&mut scratch.visibility, lf.face as usize, lf.side, &dirs, budget);
-                rays += n;
-                (a_sun / face.area, a_earth / face.area)
+    // The tolerance is a share of the epoch's signal. The first sweep budgets against the
+    // unshadowed signal; where shadows leave much less than that (a glint's tail on a
+    // mostly shadowed face), the sweep is repeated against the signal it found, so the
+    // tolerance stays relative to what the observer actually receives.
+    let mut reference = unshadowed;
+    for sweep in 0..2 {
+        sun_sum = 0.0;
+        earth_sum = 0.0;
+        lit_visible_area = 0.0;
+        for lf in &scratch.lit {
+            let face = &p.faces.faces[lf.face as usize];
+            let (f_sun, f_earth) = match &p.visibility {
+                _ if p.image.is_some() => scratch.image.fractions(lf.face as usize, face.area),
+                None => (1.0, 1.0),
+                Some(vis) => {
+                    let dirs = Uncertain {
+                        view: v,
+                        sun: (lf.sun > 0.0).then_some(l),
+                        earth: if lf.earth > 0.0 {
+                            earthshine.shadow_dir
+                        } else {
+                            None
+                        },
+                    };
+                    // Area of this face whose misclassification costs the tolerance's
+                    // share of the signal.
+                    let weight = lf.sun + lf.earth;
+                    let budget = scene.tolerance * reference / weight;
+                    let (a_sun, a_earth, n) = vis.visible_area(
+                        &mut scratch.visibility,
+                        lf.face as usize,
+                        lf.side,
+                        &dirs,
+                        budget,
+                    );
+                    rays += n;
+                    (a_sun / face.area, a_earth / face.area)
+                }
+            };
+            sun_sum += lf.sun * f_sun * face.area;
+            earth_sum += lf.earth * f_earth * face.area;
+            if lf.sun > 0.0 {
+                lit_visible_area += f_sun * face.area;
             }
-        };
-        sun_sum += lf.sun * f_sun * face.area;
-        earth_sum += lf.earth * f_earth * face.area;
-        if lf.sun > 0.0 {
-            lit_visible_area += f_sun * face.area;
         }
+        let found = sun_sum + earth_sum;
+        let rays_used = p.visibility.is_some() && p.image.is_none();
+        if sweep > 0 || !rays_used || found >= 0.5 * reference || found <= 0.0 {
+            break;
+        }
+        reference = found;
     }
 
     let r2 = range * range;

@@ -45,7 +45,11 @@ impl SeedMicrofacet {
             return diffuse;
         }
         let cb = l.dot(h).max(0.0);
-        diffuse + self.km * slope_distribution(ca, self.slope_rms) * v_cavity(ca, cb, ci, cr) * self.fresnel.reflectance(cb)
+        diffuse
+            + self.km
+                * slope_distribution(ca, self.slope_rms)
+                * v_cavity(ca, cb, ci, cr)
+                * self.fresnel.reflectance(cb)
     }
 }
 

@@ -47,7 +47,9 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
 
     if let Some(out) = &args.out {
-        let is_json = out.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"));
+        let is_json = out
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"));
         let body = if is_json {
             serde_json::to_string_pretty(&response)?
         } else {
@@ -91,7 +93,11 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         );
     }
     println!("method: {}", s.method);
-    for (what, path) in [("light curve", &args.out), ("plot", &args.plot), ("thumbnails", &args.thumbnails)] {
+    for (what, path) in [
+        ("light curve", &args.out),
+        ("plot", &args.plot),
+        ("thumbnails", &args.thumbnails),
+    ] {
         if let Some(p) = path {
             println!("{what}: {}", p.display());
         }

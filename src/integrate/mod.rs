@@ -112,7 +112,8 @@ impl<'a> Prepared<'a> {
                 ),
             ),
         };
-        let image = (scene.method == Method::Image).then(|| self::image::ImageView::build(scene, &faces));
+        let image =
+            (scene.method == Method::Image).then(|| self::image::ImageView::build(scene, &faces));
         let ill = &scene.illumination;
         Prepared {
             scene,
@@ -156,7 +157,10 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
     if progress.is_cancelled() {
         return Err(Cancelled);
     }
-    let epochs: Vec<EpochResult> = epochs.into_iter().map(|e| e.ok_or(Cancelled)).collect::<Result<_, _>>()?;
+    let epochs: Vec<EpochResult> = epochs
+        .into_iter()
+        .map(|e| e.ok_or(Cancelled))
+        .collect::<Result<_, _>>()?;
     // Images only when asked for: a light curve without them pays nothing.
     let thumbnails = match &scene.thumbnails {
         None => None,

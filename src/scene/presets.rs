@@ -31,5 +31,9 @@ pub fn find(name: &str) -> Option<&'static Preset> {
 
 /// Names of all presets, for error messages.
 pub fn names() -> String {
-    PRESETS.iter().map(|p| p.name).collect::<Vec<_>>().join(", ")
+    PRESETS
+        .iter()
+        .map(|p| p.name)
+        .collect::<Vec<_>>()
+        .join(", ")
 }

@@ -141,8 +141,12 @@ impl<'de> Deserialize<'de> for MaterialSpec {
             fn visit_str<E: serde::de::Error>(self, s: &str) -> Result<MaterialSpec, E> {
                 Ok(MaterialSpec::Preset(s.to_owned()))
             }
-            fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<MaterialSpec, A::Error> {
-                MaterialObject::deserialize(serde::de::value::MapAccessDeserializer::new(map)).map(MaterialSpec::Full)
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                map: A,
+            ) -> Result<MaterialSpec, A::Error> {
+                MaterialObject::deserialize(serde::de::value::MapAccessDeserializer::new(map))
+                    .map(MaterialSpec::Full)
             }
         }
         deserializer.deserialize_any(Visitor)

@@ -1,7 +1,12 @@
 //! Request → Scene: every input checked at the boundary, every error naming its field.
 
-use super::request::{EpochSpec, ExposureSpec, MaterialObject, MaterialSpec, MeshSpec, Request, ThumbnailSpec, TimeSpec};
-use super::{presets, EarthshineModel, Epoch, Exposure, Illumination, Material, Method, Scene, Thumbnails};
+use super::request::{
+    EpochSpec, ExposureSpec, MaterialObject, MaterialSpec, MeshSpec, Request, ThumbnailSpec,
+    TimeSpec,
+};
+use super::{
+    presets, EarthshineModel, Epoch, Exposure, Illumination, Material, Method, Scene, Thumbnails,
+};
 use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet};
 use crate::geometry::{builtin, obj, Mesh};
 use crate::radiometry::{AU_M, EARTH_RADIUS_M};
@@ -126,7 +131,10 @@ fn vector(field: &str, v: [f64; 3]) -> Result<DVec3, ValidationError> {
         return err(field, "is too long: its length must be below 1e150");
     }
     if !l2.is_normal() {
-        return err(field, "is too short to give a direction: its length must be above 1e-150");
+        return err(
+            field,
+            "is too short to give a direction: its length must be above 1e-150",
+        );
     }
     Ok(d)
 }
@@ -161,7 +169,10 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         .collect::<Result<Vec<_>, _>>()?;
     for (i, m) in materials.iter().enumerate() {
         if materials[..i].iter().any(|o| o.name == m.name) {
-            return err(format!("object.materials[{i}].name"), format!("duplicate material name `{}`", m.name));
+            return err(
+                format!("object.materials[{i}].name"),
+                format!("duplicate material name `{}`", m.name),
+            );
         }
     }
     let mesh = mesh(&req.object.mesh, &materials, limits)?;
@@ -173,7 +184,11 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
     if req.epochs.len() > limits.max_epochs {
         return err(
             "epochs",
-            format!("too many epochs: {} (limit {})", req.epochs.len(), limits.max_epochs),
+            format!(
+                "too many epochs: {} (limit {})",
+                req.epochs.len(),
+                limits.max_epochs
+            ),
         );
     }
     let earthshine_explicit = req
@@ -187,7 +202,10 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         .enumerate()
         .map(|(i, e)| {
             let ep = epoch(&format!("epochs[{i}]"), e)?;
-            if ep.earth.is_none() && earthshine_explicit && illumination.earthshine != EarthshineModel::Off {
+            if ep.earth.is_none()
+                && earthshine_explicit
+                && illumination.earthshine != EarthshineModel::Off
+            {
                 return err(
                     format!("epochs[{i}].earth"),
                     "is required when illumination.earthshine is not \"off\"",
@@ -202,25 +220,30 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         Some(t) => {
             finite("tolerance", t)?;
             if !(1e-9..=0.5).contains(&t) {
-                return err("tolerance", format!("must be between 1e-9 and 0.5, got {t}"));
+                return err(
+                    "tolerance",
+                    format!("must be between 1e-9 and 0.5, got {t}"),
+                );
             }
             t
         }
     };
-    let method = match req.method.as_deref() {
-        None | Some("auto") => Method::Auto,
-        Some("adaptive") => Method::Adaptive,
-        Some("centroid") => Method::Centroid,
-        Some("convex") => Method::Convex,
-        Some("image") => Method::Image,
-        Some(other) => {
-            return err(
+    let method =
+        match req.method.as_deref() {
+            None | Some("auto") => Method::Auto,
+            Some("adaptive") => Method::Adaptive,
+            Some("centroid") => Method::Centroid,
+            Some("convex") => Method::Convex,
+            Some("image") => Method::Image,
+            Some(other) => return err(
                 "method",
-                format!("unknown method `{other}`; expected auto, adaptive, centroid, convex or image"),
-            )
-        }
-    };
-    let (image_size, image_samples, centroid_subdivisions) = fidelity(req, method, mesh.triangles.len(), limits)?;
+                format!(
+                    "unknown method `{other}`; expected auto, adaptive, centroid, convex or image"
+                ),
+            ),
+        };
+    let (image_size, image_samples, centroid_subdivisions) =
+        fidelity(req, method, mesh.triangles.len(), limits)?;
     let thumbnails = req
         .thumbnails
         .as_ref()
@@ -249,13 +272,19 @@ fn thumbnails(spec: &ThumbnailSpec, n_epochs: usize) -> Result<Thumbnails, Valid
     let mut out = Thumbnails::default_for(n_epochs);
     if let Some(size) = spec.size {
         if !(8..=2048).contains(&size) {
-            return err("thumbnails.size", format!("must be between 8 and 2048 pixels, got {size}"));
+            return err(
+                "thumbnails.size",
+                format!("must be between 8 and 2048 pixels, got {size}"),
+            );
         }
         out.size = size;
     }
     if let Some(samples) = spec.samples {
         if !(1..=16).contains(&samples) {
-            return err("thumbnails.samples", format!("must be between 1 and 16 per pixel side, got {samples}"));
+            return err(
+                "thumbnails.samples",
+                format!("must be between 1 and 16 per pixel side, got {samples}"),
+            );
         }
         out.samples = samples;
     }
@@ -328,10 +357,22 @@ fn thumbnails(spec: &ThumbnailSpec, n_epochs: usize) -> Result<Thumbnails, Valid
 
 /// The methods' fidelity settings: (image_size, image_samples, centroid_subdivisions).
 /// A setting given for another method is an error, so a request never silently ignores it.
-fn fidelity(req: &Request, method: Method, triangles: usize, limits: &Limits) -> Result<(u32, u32, u32), ValidationError> {
+fn fidelity(
+    req: &Request,
+    method: Method,
+    triangles: usize,
+    limits: &Limits,
+) -> Result<(u32, u32, u32), ValidationError> {
     let only_for = |field: &str, m: Method| -> Result<(), ValidationError> {
         if method != m {
-            return err(field, format!("applies only to \"method\": \"{}\" (the request uses `{}`)", m.name(), method.name()));
+            return err(
+                field,
+                format!(
+                    "applies only to \"method\": \"{}\" (the request uses `{}`)",
+                    m.name(),
+                    method.name()
+                ),
+            );
         }
         Ok(())
     };
@@ -339,27 +380,39 @@ fn fidelity(req: &Request, method: Method, triangles: usize, limits: &Limits) ->
     if let Some(size) = req.image_size {
         only_for("image_size", Method::Image)?;
         if !(8..=4096).contains(&size) {
-            return err("image_size", format!("must be between 8 and 4096 pixels, got {size}"));
+            return err(
+                "image_size",
+                format!("must be between 8 and 4096 pixels, got {size}"),
+            );
         }
         out.0 = size;
     }
     if let Some(samples) = req.image_samples {
         only_for("image_samples", Method::Image)?;
         if !(1..=16).contains(&samples) {
-            return err("image_samples", format!("must be between 1 and 16 per pixel side, got {samples}"));
+            return err(
+                "image_samples",
+                format!("must be between 1 and 16 per pixel side, got {samples}"),
+            );
         }
         out.1 = samples;
     }
     if let Some(k) = req.centroid_subdivisions {
         only_for("centroid_subdivisions", Method::Centroid)?;
         if k > 8 {
-            return err("centroid_subdivisions", format!("must be between 0 and 8, got {k}"));
+            return err(
+                "centroid_subdivisions",
+                format!("must be between 0 and 8, got {k}"),
+            );
         }
         let refined = (triangles as u128) << (2 * k);
         if refined > limits.max_triangles.min(1 << 26) as u128 {
             return err(
                 "centroid_subdivisions",
-                format!("too many triangles after {k} subdivisions: {refined} (limit {})", limits.max_triangles.min(1 << 26)),
+                format!(
+                    "too many triangles after {k} subdivisions: {refined} (limit {})",
+                    limits.max_triangles.min(1 << 26)
+                ),
             );
         }
         out.2 = k;
@@ -376,7 +429,10 @@ fn illumination(req: &Request) -> Result<Illumination, ValidationError> {
         finite("illumination.band_um[0]", a)?;
         finite("illumination.band_um[1]", b)?;
         if a < 0.0 || b <= a {
-            return err("illumination.band_um", format!("must be [λ1, λ2] in µm with 0 <= λ1 < λ2, got [{a}, {b}]"));
+            return err(
+                "illumination.band_um",
+                format!("must be [λ1, λ2] in µm with 0 <= λ1 < λ2, got [{a}, {b}]"),
+            );
         }
         out.band_um = [a, b];
     }
@@ -405,7 +461,9 @@ fn illumination(req: &Request) -> Result<Illumination, ValidationError> {
 fn epoch(field: &str, e: &EpochSpec) -> Result<Epoch, ValidationError> {
     let t = match &e.t {
         TimeSpec::Seconds(s) => finite(&format!("{field}.t"), *s)?,
-        TimeSpec::Iso(s) => parse_time(s).map_err(|m| ValidationError::new(format!("{field}.t"), m))?,
+        TimeSpec::Iso(s) => {
+            parse_time(s).map_err(|m| ValidationError::new(format!("{field}.t"), m))?
+        }
     };
     let mut sun = vector(&format!("{field}.sun"), e.sun)?.normalize();
     let mut observer = vector(&format!("{field}.observer"), e.observer)?;
@@ -427,7 +485,13 @@ fn epoch(field: &str, e: &EpochSpec) -> Result<Epoch, ValidationError> {
     }
     if let Some(d) = earth {
         if d.length() <= EARTH_RADIUS_M {
-            return err(format!("{field}.earth"), format!("object is inside the Earth: |earth| = {:.0} m <= 6371 km", d.length()));
+            return err(
+                format!("{field}.earth"),
+                format!(
+                    "object is inside the Earth: |earth| = {:.0} m <= 6371 km",
+                    d.length()
+                ),
+            );
         }
     }
     let au = match e.sun_distance_au {
@@ -446,22 +510,33 @@ fn epoch(field: &str, e: &EpochSpec) -> Result<Epoch, ValidationError> {
 /// ISO 8601 / RFC 3339 UTC time → Unix seconds. A missing zone is taken as UTC.
 fn parse_time(s: &str) -> Result<f64, String> {
     use chrono::{DateTime, NaiveDateTime};
-    let to_secs = |dt: DateTime<chrono::Utc>| dt.timestamp() as f64 + dt.timestamp_subsec_nanos() as f64 * 1e-9;
+    let to_secs = |dt: DateTime<chrono::Utc>| {
+        dt.timestamp() as f64 + dt.timestamp_subsec_nanos() as f64 * 1e-9
+    };
     if let Ok(dt) = DateTime::parse_from_rfc3339(s) {
         return Ok(to_secs(dt.with_timezone(&chrono::Utc)));
     }
-    for fmt in ["%Y-%m-%dT%H:%M:%S%.f", "%Y-%m-%d %H:%M:%S%.f", "%Y-%m-%dT%H:%M"] {
+    for fmt in [
+        "%Y-%m-%dT%H:%M:%S%.f",
+        "%Y-%m-%d %H:%M:%S%.f",
+        "%Y-%m-%dT%H:%M",
+    ] {
         if let Ok(n) = NaiveDateTime::parse_from_str(s, fmt) {
             return Ok(to_secs(n.and_utc()));
         }
     }
-    Err(format!("`{s}` is neither seconds nor an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)"))
+    Err(format!(
+        "`{s}` is neither seconds nor an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)"
+    ))
 }
 
 fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationError> {
     let preset = |name: &str, f: &str| {
         presets::find(name).ok_or_else(|| {
-            ValidationError::new(f, format!("unknown preset `{name}`; presets: {}", presets::names()))
+            ValidationError::new(
+                f,
+                format!("unknown preset `{name}`; presets: {}", presets::names()),
+            )
         })
     };
     match spec {
@@ -476,11 +551,18 @@ fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationErro
             }
             let two_sided = m.two_sided.unwrap_or(false);
             match (&m.preset, &m.model) {
-                (Some(_), Some(_)) => err(format!("{field}.model"), "give either `model` or `preset`, not both"),
+                (Some(_), Some(_)) => err(
+                    format!("{field}.model"),
+                    "give either `model` or `preset`, not both",
+                ),
                 (Some(p), None) => {
                     let brdf = (preset(p, &format!("{field}.preset"))?.brdf)();
                     only(field, m, &[])?;
-                    Ok(Material { name: m.name.clone(), brdf, two_sided })
+                    Ok(Material {
+                        name: m.name.clone(),
+                        brdf,
+                        two_sided,
+                    })
                 }
                 (None, None) => err(format!("{field}.model"), "is required (or give `preset`)"),
                 (None, Some(model)) => Ok(Material {
@@ -496,13 +578,28 @@ fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationErro
 /// Rejects parameters that the model does not use, naming the first one.
 fn only(field: &str, m: &MaterialObject, allowed: &[&str]) -> Result<(), ValidationError> {
     let given = [
-        ("kd", m.kd), ("km", m.km), ("slope_rms", m.slope_rms), ("n", m.n), ("k", m.k),
-        ("albedo", m.albedo), ("alpha", m.alpha), ("rd", m.rd), ("rs", m.rs), ("nu", m.nu), ("nv", m.nv),
+        ("kd", m.kd),
+        ("km", m.km),
+        ("slope_rms", m.slope_rms),
+        ("n", m.n),
+        ("k", m.k),
+        ("albedo", m.albedo),
+        ("alpha", m.alpha),
+        ("rd", m.rd),
+        ("rs", m.rs),
+        ("nu", m.nu),
+        ("nv", m.nv),
     ];
     for (name, v) in given {
         if v.is_some() && !allowed.contains(&name) {
-            let what = m.model.as_deref().map_or("a preset".to_string(), |s| format!("model `{s}`"));
-            return err(format!("{field}.{name}"), format!("is not a parameter of {what}"));
+            let what = m
+                .model
+                .as_deref()
+                .map_or("a preset".to_string(), |s| format!("model `{s}`"));
+            return err(
+                format!("{field}.{name}"),
+                format!("is not a parameter of {what}"),
+            );
         }
     }
     Ok(())
@@ -510,7 +607,9 @@ fn only(field: &str, m: &MaterialObject, allowed: &[&str]) -> Result<(), Validat
 
 fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, ValidationError> {
     let f = |p: &str| format!("{field}.{p}");
-    let req = |p: &str, v: Option<f64>| v.ok_or_else(|| ValidationError::new(f(p), format!("is required by model `{model}`")));
+    let req = |p: &str, v: Option<f64>| {
+        v.ok_or_else(|| ValidationError::new(f(p), format!("is required by model `{model}`")))
+    };
     match model {
         "lambert" => {
             only(field, m, &["albedo"])?;
@@ -552,7 +651,11 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
 
 fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh, ValidationError> {
     let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
-    let forms = [spec.vertices.is_some() || spec.triangles.is_some(), spec.obj.is_some(), spec.builtin.is_some()];
+    let forms = [
+        spec.vertices.is_some() || spec.triangles.is_some(),
+        spec.obj.is_some(),
+        spec.builtin.is_some(),
+    ];
     if forms.iter().filter(|&&b| b).count() != 1 {
         return err(
             "object.mesh",
@@ -560,78 +663,110 @@ fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh
         );
     }
     if spec.material_ids.is_some() && spec.triangles.is_none() {
-        return err("object.mesh.material_ids", "goes only with inline `triangles` (OBJ and built-in meshes use material names)");
+        return err(
+            "object.mesh.material_ids",
+            "goes only with inline `triangles` (OBJ and built-in meshes use material names)",
+        );
     }
-    let mut mesh = if let Some(name) = &spec.builtin {
-        let b = builtin::find(name).ok_or_else(|| {
-            let known: Vec<_> = builtin::BUILTINS.iter().map(|b| b.name).collect();
-            ValidationError::new("object.mesh.builtin", format!("unknown object `{name}`; built-in: {}", known.join(", ")))
-        })?;
-        let mut mesh = (b.build)();
-        // map the object's material names onto the request's materials
-        let mut map = Vec::new();
-        for n in b.material_names {
-            match names.iter().position(|m| m == n) {
-                Some(i) => map.push(i as u32),
-                None if mesh.material_ids.iter().all(|&id| b.material_names[id as usize] != *n) => map.push(0),
-                None => {
-                    return err(
+    let mut mesh =
+        if let Some(name) = &spec.builtin {
+            let b = builtin::find(name).ok_or_else(|| {
+                let known: Vec<_> = builtin::BUILTINS.iter().map(|b| b.name).collect();
+                ValidationError::new(
+                    "object.mesh.builtin",
+                    format!("unknown object `{name}`; built-in: {}", known.join(", ")),
+                )
+            })?;
+            let mut mesh = (b.build)();
+            // map the object's material names onto the request's materials
+            let mut map = Vec::new();
+            for n in b.material_names {
+                match names.iter().position(|m| m == n) {
+                    Some(i) => map.push(i as u32),
+                    None if mesh
+                        .material_ids
+                        .iter()
+                        .all(|&id| b.material_names[id as usize] != *n) =>
+                    {
+                        map.push(0)
+                    }
+                    None => return err(
                         "object.materials",
-                        format!("built-in object `{name}` needs a material named `{n}` (it uses: {})", b.material_names.join(", ")),
-                    )
+                        format!(
+                            "built-in object `{name}` needs a material named `{n}` (it uses: {})",
+                            b.material_names.join(", ")
+                        ),
+                    ),
                 }
             }
-        }
-        for id in &mut mesh.material_ids {
-            *id = map[*id as usize];
-        }
-        mesh
-    } else if let Some(text) = &spec.obj {
-        obj::parse(text, &names).map_err(|m| ValidationError::new("object.mesh.obj", m))?
-    } else {
-        let vertices = spec.vertices.as_ref().ok_or_else(|| ValidationError::new("object.mesh.vertices", "is required with `triangles`"))?;
-        let triangles = spec.triangles.as_ref().ok_or_else(|| ValidationError::new("object.mesh.triangles", "is required with `vertices`"))?;
-        let mut mesh = Mesh {
-            vertices: Vec::with_capacity(vertices.len()),
-            triangles: triangles.clone(),
-            material_ids: Vec::new(),
-        };
-        for (i, v) in vertices.iter().enumerate() {
-            let p = DVec3::from_array(*v);
-            if !p.is_finite() {
-                return err(format!("object.mesh.vertices[{i}]"), "must have three finite components");
+            for id in &mut mesh.material_ids {
+                *id = map[*id as usize];
             }
-            mesh.vertices.push(p);
-        }
-        mesh.material_ids = match &spec.material_ids {
-            None => vec![0; triangles.len()],
-            Some(ids) => {
-                if ids.len() != triangles.len() {
+            mesh
+        } else if let Some(text) = &spec.obj {
+            obj::parse(text, &names).map_err(|m| ValidationError::new("object.mesh.obj", m))?
+        } else {
+            let vertices = spec.vertices.as_ref().ok_or_else(|| {
+                ValidationError::new("object.mesh.vertices", "is required with `triangles`")
+            })?;
+            let triangles = spec.triangles.as_ref().ok_or_else(|| {
+                ValidationError::new("object.mesh.triangles", "is required with `vertices`")
+            })?;
+            let mut mesh = Mesh {
+                vertices: Vec::with_capacity(vertices.len()),
+                triangles: triangles.clone(),
+                material_ids: Vec::new(),
+            };
+            for (i, v) in vertices.iter().enumerate() {
+                let p = DVec3::from_array(*v);
+                if !p.is_finite() {
                     return err(
-                        "object.mesh.material_ids",
-                        format!("has {} entries but there are {} triangles", ids.len(), triangles.len()),
+                        format!("object.mesh.vertices[{i}]"),
+                        "must have three finite components",
                     );
                 }
-                for (i, &id) in ids.iter().enumerate() {
-                    if id as usize >= materials.len() {
+                mesh.vertices.push(p);
+            }
+            mesh.material_ids = match &spec.material_ids {
+                None => vec![0; triangles.len()],
+                Some(ids) => {
+                    if ids.len() != triangles.len() {
                         return err(
-                            format!("object.mesh.material_ids[{i}]"),
-                            format!("material index {id} out of range (there are {} materials)", materials.len()),
+                            "object.mesh.material_ids",
+                            format!(
+                                "has {} entries but there are {} triangles",
+                                ids.len(),
+                                triangles.len()
+                            ),
                         );
                     }
+                    for (i, &id) in ids.iter().enumerate() {
+                        if id as usize >= materials.len() {
+                            return err(
+                                format!("object.mesh.material_ids[{i}]"),
+                                format!(
+                                    "material index {id} out of range (there are {} materials)",
+                                    materials.len()
+                                ),
+                            );
+                        }
+                    }
+                    ids.clone()
                 }
-                ids.clone()
-            }
+            };
+            mesh
         };
-        mesh
-    };
     if mesh.triangles.is_empty() {
         return err("object.mesh.triangles", "the mesh has no triangles");
     }
     if mesh.triangles.len() > limits.max_triangles {
         return err(
             "object.mesh",
-            format!("too many triangles: {} (limit {})", mesh.triangles.len(), limits.max_triangles),
+            format!(
+                "too many triangles: {} (limit {})",
+                mesh.triangles.len(),
+                limits.max_triangles
+            ),
         );
     }
     let nv = mesh.vertices.len();

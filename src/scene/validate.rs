@@ -228,20 +228,21 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
             t
         }
     };
-    let method =
-        match req.method.as_deref() {
-            None | Some("auto") => Method::Auto,
-            Some("adaptive") => Method::Adaptive,
-            Some("centroid") => Method::Centroid,
-            Some("convex") => Method::Convex,
-            Some("image") => Method::Image,
-            Some(other) => return err(
+    let method = match req.method.as_deref() {
+        None | Some("auto") => Method::Auto,
+        Some("adaptive") => Method::Adaptive,
+        Some("centroid") => Method::Centroid,
+        Some("convex") => Method::Convex,
+        Some("image") => Method::Image,
+        Some(other) => {
+            return err(
                 "method",
                 format!(
                     "unknown method `{other}`; expected auto, adaptive, centroid, convex or image"
                 ),
-            ),
-        };
+            )
+        }
+    };
     let (image_size, image_samples, centroid_subdivisions) =
         fidelity(req, method, mesh.triangles.len(), limits)?;
     let thumbnails = req
@@ -668,94 +669,95 @@ fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh
             "goes only with inline `triangles` (OBJ and built-in meshes use material names)",
         );
     }
-    let mut mesh =
-        if let Some(name) = &spec.builtin {
-            let b = builtin::find(name).ok_or_else(|| {
-                let known: Vec<_> = builtin::BUILTINS.iter().map(|b| b.name).collect();
-                ValidationError::new(
-                    "object.mesh.builtin",
-                    format!("unknown object `{name}`; built-in: {}", known.join(", ")),
-                )
-            })?;
-            let mut mesh = (b.build)();
-            // map the object's material names onto the request's materials
-            let mut map = Vec::new();
-            for n in b.material_names {
-                match names.iter().position(|m| m == n) {
-                    Some(i) => map.push(i as u32),
-                    None if mesh
-                        .material_ids
-                        .iter()
-                        .all(|&id| b.material_names[id as usize] != *n) =>
-                    {
-                        map.push(0)
-                    }
-                    None => return err(
+    let mut mesh = if let Some(name) = &spec.builtin {
+        let b = builtin::find(name).ok_or_else(|| {
+            let known: Vec<_> = builtin::BUILTINS.iter().map(|b| b.name).collect();
+            ValidationError::new(
+                "object.mesh.builtin",
+                format!("unknown object `{name}`; built-in: {}", known.join(", ")),
+            )
+        })?;
+        let mut mesh = (b.build)();
+        // map the object's material names onto the request's materials
+        let mut map = Vec::new();
+        for n in b.material_names {
+            match names.iter().position(|m| m == n) {
+                Some(i) => map.push(i as u32),
+                None if mesh
+                    .material_ids
+                    .iter()
+                    .all(|&id| b.material_names[id as usize] != *n) =>
+                {
+                    map.push(0)
+                }
+                None => {
+                    return err(
                         "object.materials",
                         format!(
                             "built-in object `{name}` needs a material named `{n}` (it uses: {})",
                             b.material_names.join(", ")
                         ),
-                    ),
+                    )
                 }
             }
-            for id in &mut mesh.material_ids {
-                *id = map[*id as usize];
+        }
+        for id in &mut mesh.material_ids {
+            *id = map[*id as usize];
+        }
+        mesh
+    } else if let Some(text) = &spec.obj {
+        obj::parse(text, &names).map_err(|m| ValidationError::new("object.mesh.obj", m))?
+    } else {
+        let vertices = spec.vertices.as_ref().ok_or_else(|| {
+            ValidationError::new("object.mesh.vertices", "is required with `triangles`")
+        })?;
+        let triangles = spec.triangles.as_ref().ok_or_else(|| {
+            ValidationError::new("object.mesh.triangles", "is required with `vertices`")
+        })?;
+        let mut mesh = Mesh {
+            vertices: Vec::with_capacity(vertices.len()),
+            triangles: triangles.clone(),
+            material_ids: Vec::new(),
+        };
+        for (i, v) in vertices.iter().enumerate() {
+            let p = DVec3::from_array(*v);
+            if !p.is_finite() {
+                return err(
+                    format!("object.mesh.vertices[{i}]"),
+                    "must have three finite components",
+                );
             }
-            mesh
-        } else if let Some(text) = &spec.obj {
-            obj::parse(text, &names).map_err(|m| ValidationError::new("object.mesh.obj", m))?
-        } else {
-            let vertices = spec.vertices.as_ref().ok_or_else(|| {
-                ValidationError::new("object.mesh.vertices", "is required with `triangles`")
-            })?;
-            let triangles = spec.triangles.as_ref().ok_or_else(|| {
-                ValidationError::new("object.mesh.triangles", "is required with `vertices`")
-            })?;
-            let mut mesh = Mesh {
-                vertices: Vec::with_capacity(vertices.len()),
-                triangles: triangles.clone(),
-                material_ids: Vec::new(),
-            };
-            for (i, v) in vertices.iter().enumerate() {
-                let p = DVec3::from_array(*v);
-                if !p.is_finite() {
+            mesh.vertices.push(p);
+        }
+        mesh.material_ids = match &spec.material_ids {
+            None => vec![0; triangles.len()],
+            Some(ids) => {
+                if ids.len() != triangles.len() {
                     return err(
-                        format!("object.mesh.vertices[{i}]"),
-                        "must have three finite components",
+                        "object.mesh.material_ids",
+                        format!(
+                            "has {} entries but there are {} triangles",
+                            ids.len(),
+                            triangles.len()
+                        ),
                     );
                 }
-                mesh.vertices.push(p);
-            }
-            mesh.material_ids = match &spec.material_ids {
-                None => vec![0; triangles.len()],
-                Some(ids) => {
-                    if ids.len() != triangles.len() {
+                for (i, &id) in ids.iter().enumerate() {
+                    if id as usize >= materials.len() {
                         return err(
-                            "object.mesh.material_ids",
+                            format!("object.mesh.material_ids[{i}]"),
                             format!(
-                                "has {} entries but there are {} triangles",
-                                ids.len(),
-                                triangles.len()
+                                "material index {id} out of range (there are {} materials)",
+                                materials.len()
                             ),
                         );
                     }
-                    for (i, &id) in ids.iter().enumerate() {
-                        if id as usize >= materials.len() {
-                            return err(
-                                format!("object.mesh.material_ids[{i}]"),
-                                format!(
-                                    "material index {id} out of range (there are {} materials)",
-                                    materials.len()
-                                ),
-                            );
-                        }
-                    }
-                    ids.clone()
                 }
-            };
-            mesh
+                ids.clone()
+            }
         };
+        mesh
+    };
     if mesh.triangles.is_empty() {
         return err("object.mesh.triangles", "the mesh has no triangles");
     }

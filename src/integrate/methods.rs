@@ -11,40 +11,12 @@
 //! | `convex`   | none                                      | faces                    |
 
 use super::simulate;
-use crate::geometry::Mesh;
 use crate::scene::{Method, Scene};
 use std::time::Instant;
 
 /// The mesh with every triangle split into four (at its edge midpoints) `k` times:
 /// 4^k triangles per triangle, same surface, same materials, same winding.
-pub fn subdivide(mesh: &Mesh, k: u32) -> Mesh {
-    let mut out = mesh.clone();
-    for _ in 0..k {
-        let mut next = Mesh {
-            vertices: out.vertices.clone(),
-            triangles: Vec::with_capacity(out.triangles.len() * 4),
-            material_ids: Vec::with_capacity(out.triangles.len() * 4),
-        };
-        // one midpoint per shared edge, so the refined mesh stays watertight
-        let mut mid = std::collections::HashMap::new();
-        let mut midpoint = |a: u32, b: u32, verts: &mut Vec<glam::DVec3>| -> u32 {
-            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                verts.push(0.5 * (verts[a as usize] + verts[b as usize]));
-                verts.len() as u32 - 1
-            })
-        };
-        for (&[a, b, c], &m) in out.triangles.iter().zip(&out.material_ids) {
-            let ab = midpoint(a, b, &mut next.vertices);
-            let bc = midpoint(b, c, &mut next.vertices);
-            let ca = midpoint(c, a, &mut next.vertices);
-            next.triangles
-                .extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-            next.material_ids.extend([m; 4]);
-        }
-        out = next;
-    }
-    out
-}
+pub use crate::geometry::builtin::subdivide;
 
 /// The scene the `centroid` method actually samples: its mesh subdivided
 /// `centroid_subdivisions` times; `None` when there is nothing to refine.

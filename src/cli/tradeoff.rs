@@ -6,7 +6,7 @@
 
 use crate::integrate::methods::{self, Run, Setting};
 use crate::report::chart;
-use crate::scene::{Limits, Method, Scene};
+use crate::scene::{Limits, Scene};
 use anyhow::Context;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -97,14 +97,10 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
     };
     let ref_subset: Vec<f64> = reference.irradiance.iter().step_by(step).copied().collect();
     let agreement = methods::errors(&check.irradiance, &ref_subset);
-    let reference_label = format!(
-        "{} {}",
-        reference.setting.method().name(),
-        reference.setting.label()
-    );
+    let reference_label = format!("{} {}", reference.setting.name(), reference.setting.label());
     let check_line = format!(
         "reference: {reference_label}; check: {} {} on {} epochs differs from it by max {:.2e}, RMS {:.2e} relative",
-        check.setting.method().name(),
+        check.setting.name(),
         check.setting.label(),
         ref_subset.len(),
         agreement.max,
@@ -130,7 +126,7 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
     // One line per method, in the sweep's order.
     let mut lines: Vec<chart::Line> = Vec::new();
     for (r, e) in &rows {
-        let name = r.setting.method().name();
+        let name = r.setting.name();
         let point = (r.ms_per_epoch, e.max, e.rms);
         match lines.iter_mut().find(|l| l.name == name) {
             Some(l) => l.points.push(point),
@@ -194,7 +190,7 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         let _ = writeln!(
             md,
             "| {} | {} | {:.2e} | {:.2e} | {:.4} | {:.0} |",
-            r.setting.method().name(),
+            r.setting.name(),
             r.setting.label(),
             e.max,
             e.rms,
@@ -225,7 +221,9 @@ fn auto_speedup(rows: &[(Run, methods::Errors)]) -> Option<String> {
         .find(|(r, _)| matches!(r.setting, Setting::Auto { tolerance } if tolerance == 1e-3))?;
     let cheapest = rows
         .iter()
-        .filter(|(r, e)| r.setting.method() == Method::Adaptive && e.max <= auto_e.max.max(1e-15))
+        .filter(|(r, e)| {
+            matches!(r.setting, Setting::Adaptive { .. }) && e.max <= auto_e.max.max(1e-15)
+        })
         .min_by(|a, b| a.0.ms_per_epoch.total_cmp(&b.0.ms_per_epoch));
     Some(match cheapest {
         Some((a, a_e)) => format!(

@@ -6,6 +6,7 @@ pub mod convex;
 pub mod faces;
 pub mod mesh;
 pub mod obj;
+pub mod polygon;
 
 pub use faces::{Face, Faces};
 pub use mesh::Mesh;

@@ -149,12 +149,14 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             earthshine.shadow_dir,
         );
     }
-    // The tolerance is a share of the epoch's signal. The first sweep budgets against the
+    // Faces whose shadows are clipped exactly need no budget. For sampled ones the
+    // tolerance is a share of the epoch's signal. The first sweep budgets against the
     // unshadowed signal; where shadows leave much less than that (a glint's tail on a
     // mostly shadowed face), the sweep is repeated against the signal it found, so the
     // tolerance stays relative to what the observer actually receives.
     let mut reference = unshadowed;
     for sweep in 0..2 {
+        let rays_before = rays;
         sun_sum = 0.0;
         earth_sum = 0.0;
         lit_visible_area = 0.0;
@@ -195,7 +197,8 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             }
         }
         let found = sun_sum + earth_sum;
-        let rays_used = p.visibility.is_some() && p.image.is_none();
+        // exact (clipped) areas do not depend on the budget: only sampled faces re-run
+        let rays_used = p.image.is_none() && rays > rays_before;
         if sweep > 0 || !rays_used || found >= 0.5 * reference || found <= 0.0 {
             break;
         }

@@ -39,6 +39,11 @@ pub enum Setting {
     Centroid {
         subdivisions: u32,
     },
+    /// `adaptive` with every partly shadowed face sampled by rays to the tolerance
+    /// instead of clipped exactly (the engine's fallback, charted on its own).
+    Sampled {
+        tolerance: f64,
+    },
     /// Pixels on a side, samples per pixel side.
     Image {
         size: u32,
@@ -50,7 +55,7 @@ pub enum Setting {
 impl Setting {
     pub fn method(&self) -> Method {
         match self {
-            Setting::Adaptive { .. } => Method::Adaptive,
+            Setting::Adaptive { .. } | Setting::Sampled { .. } => Method::Adaptive,
             Setting::Auto { .. } => Method::Auto,
             Setting::Centroid { .. } => Method::Centroid,
             Setting::Image { .. } => Method::Image,
@@ -58,10 +63,20 @@ impl Setting {
         }
     }
 
+    /// The line this setting belongs to on the chart: the method's name, or `sampled`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Setting::Sampled { .. } => "sampled",
+            s => s.method().name(),
+        }
+    }
+
     /// The setting as the request would say it, e.g. `tolerance 1e-3`, `256 px × 4²`.
     pub fn label(&self) -> String {
         match self {
-            Setting::Adaptive { tolerance } | Setting::Auto { tolerance } => {
+            Setting::Adaptive { tolerance }
+            | Setting::Auto { tolerance }
+            | Setting::Sampled { tolerance } => {
                 format!("tolerance {tolerance:e}")
             }
             Setting::Centroid { subdivisions } => format!("subdivisions {subdivisions}"),
@@ -77,6 +92,10 @@ impl Setting {
         match *self {
             Setting::Adaptive { tolerance } | Setting::Auto { tolerance } => {
                 s.tolerance = tolerance
+            }
+            Setting::Sampled { tolerance } => {
+                s.tolerance = tolerance;
+                s.clip_shadows = false;
             }
             Setting::Centroid { subdivisions } => s.centroid_subdivisions = subdivisions,
             Setting::Image { size, samples } => {
@@ -98,6 +117,9 @@ pub fn default_sweep(quick: bool) -> Vec<Setting> {
     }
     for t in [1e-1, 1e-2, 1e-3, 1e-4] {
         v.push(Setting::Auto { tolerance: t });
+    }
+    for t in [1e-1, 1e-2, 1e-3, 1e-4] {
+        v.push(Setting::Sampled { tolerance: t });
     }
     for k in 0..=if quick { 2 } else { 3 } {
         v.push(Setting::Centroid { subdivisions: k });

@@ -11,15 +11,26 @@
 //!   This is what keeps a concave dish lit from in front free of rays.
 //!
 //! Faces are grouped into spatial *patches* (with bounding spheres and normal cones), so
-//! whole groups of occluders are dismissed at once; only faces with an unproven direction
-//! are sampled with rays, refining each triangle adaptively (4-way splits) until either the
-//! samples agree or a leaf is small enough that mis-classifying all of it stays within the
-//! tolerance's share of the epoch's signal.
+//! whole groups of occluders are dismissed at once. A face with an unproven direction is
+//! then **clipped**: each possible blocker face, cut to the part in front of the face's
+//! plane, is projected along the direction onto that plane (a convex polygon) and
+//! subtracted from the face ([`crate::geometry::polygon::Region`]). That area is exact —
+//! no rays, no tolerance — and costs a few polygon splits per blocker.
+//!
+//! Faces nearly edge-on to a direction (the projection stretches without bound) or cut
+//! into too many pieces are **sampled** with rays instead, refining each triangle
+//! adaptively (4-way splits) until either the samples agree or a leaf is small enough
+//! that mis-classifying all of it stays within the tolerance's share of the epoch's
+//! signal. The sampler has known limits that clipping does not: a shadow narrower than
+//! its caster's bounding radius, or a shadow corner, can fall between agreeing samples;
+//! and f32 rays at grazing incidence on a neighbour miss some hits (measured on the
+//! box-wing's dish, checked against f64 intersection).
 
 use crate::geometry::bvh::Occluder;
+use crate::geometry::polygon::Region;
 use crate::geometry::Faces;
 use crate::scene::Scene;
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -56,6 +67,9 @@ struct FaceGeom {
     /// finely it is meshed — a fan over its outline, so sampling cost follows the face's
     /// shape, not its tessellation.
     pieces: Vec<[DVec3; 3]>,
+    /// The face's outline when it is a convex polygon (else empty): one polygon to project
+    /// as a shadow or to clip, however finely the face is meshed.
+    outline: Vec<DVec3>,
     /// Distinct vertices of the face, for exact half-space tests.
     vertices: Vec<DVec3>,
     patch: u32,
@@ -90,6 +104,8 @@ pub struct Visibility {
     /// Per receiver patch: the occluder patches that may block it, with their relation.
     candidates: Vec<Vec<(u32, Side)>>,
     tol: f64,
+    /// Clip partly shadowed faces exactly where possible (else always sample).
+    clip: bool,
 }
 
 /// Per-thread cache of patch-level results, valid within one epoch.
@@ -98,6 +114,20 @@ pub struct Cache {
     key: Option<(u32, bool)>,
     /// Flagged occluder patches for view, sun, earth (None: not computed yet).
     flagged: [Option<Vec<u32>>; 3],
+    exact: ExactScratch,
+}
+
+/// Buffers for [`Visibility::exact_area`].
+#[derive(Default)]
+struct ExactScratch {
+    /// Seen (and then sunlit) part of the face.
+    lit: Region,
+    /// Seen and earthlit part.
+    earthlit: Region,
+    /// One blocker polygon: projected vertex and height above the face's plane.
+    clip_in: Vec<(DVec2, f64)>,
+    shadow: Vec<DVec2>,
+    poly: Vec<DVec3>,
 }
 
 impl Cache {
@@ -144,13 +174,16 @@ impl Visibility {
                         .unwrap_or(std::cmp::Ordering::Equal)
                 });
                 vertices.dedup();
+                let (pieces, outline) =
+                    pieces_of(f.normal, f.area, &f.triangles, &corners, &vertices, mode);
                 FaceGeom {
                     normal: f.normal,
                     centroid: f.centroid,
                     radius: f.radius,
                     area: f.area,
                     two_sided: scene.materials[f.material as usize].two_sided,
-                    pieces: pieces_of(f.normal, f.area, &f.triangles, &corners, &vertices, mode),
+                    pieces,
+                    outline,
                     vertices,
                     patch: (i / per_patch) as u32,
                 }
@@ -194,6 +227,7 @@ impl Visibility {
             patches,
             candidates,
             tol,
+            clip: scene.clip_shadows,
         }
     }
 
@@ -236,6 +270,7 @@ impl Visibility {
                     continue;
                 }
                 let blocker = Blocker {
+                    face: g as u32,
                     centre: o.centroid,
                     radius: o.radius,
                     normal: o.normal,
@@ -309,6 +344,13 @@ impl Visibility {
         if s.blockers.iter().all(Vec::is_empty) {
             return (full_area, full_area, 0);
         }
+        if self.mode == VisibilityMode::Adaptive && self.clip {
+            if let Some((a_sun, a_earth)) =
+                self.exact_area(&mut cache.exact, face, n, &directions, &s.blockers)
+            {
+                return (a_sun, a_earth, 0);
+            }
+        }
         for piece in &f.pieces {
             s.refine(*piece, None, area_of(piece), 0, self.tol);
         }
@@ -316,9 +358,134 @@ impl Visibility {
     }
 }
 
+/// Above this many convex pieces per face, shadows are sampled instead of clipped.
+const MAX_PIECES: usize = 256;
+/// Below this cosine between a face's normal and a direction the shadow projection
+/// stretches too far for exact clipping: such faces are sampled.
+const MIN_COS_EXACT: f64 = 1e-4;
+
+impl Visibility {
+    /// Exact areas (m²) of `face` (side normal `n`) that are seen and sunlit, and seen
+    /// and earthlit: the face minus the parallel projections onto its plane of the parts of
+    /// the blockers in front of it. A point of the face is hidden along d exactly when the
+    /// ray from it along d meets a blocker in front of the plane, i.e. when it lies in
+    /// that projection. `None` when the face is nearly edge-on to a direction or the
+    /// shadows cut it into too many pieces (the caller samples instead).
+    fn exact_area(
+        &self,
+        x: &mut ExactScratch,
+        face: usize,
+        n: DVec3,
+        dirs: &[Option<DVec3>; 3],
+        blockers: &[Vec<Blocker>; 3],
+    ) -> Option<(f64, f64)> {
+        if dirs.iter().flatten().any(|d| n.dot(*d) < MIN_COS_EXACT) {
+            return None;
+        }
+        let f = &self.faces[face];
+        let (u, w) = crate::radiometry::earth::orthonormal_basis(n);
+        let c = f.centroid;
+        let plane = |p: DVec3| {
+            let r = p - c;
+            DVec2::new(r.dot(u), r.dot(w))
+        };
+        x.lit.reset(f.radius);
+        if f.outline.is_empty() {
+            for t in &f.pieces {
+                x.shadow.clear();
+                x.shadow.extend(t.iter().map(|p| plane(*p)));
+                x.lit.add_convex(&x.shadow);
+            }
+        } else {
+            x.shadow.clear();
+            x.shadow.extend(f.outline.iter().map(|p| plane(*p)));
+            x.lit.add_convex(&x.shadow);
+        }
+        // view first: both the sunlit and the earthlit parts must be seen
+        let shadows = |region: &mut Region,
+                       k: usize,
+                       x_in: &mut Vec<(DVec2, f64)>,
+                       shadow: &mut Vec<DVec2>,
+                       poly: &mut Vec<DVec3>|
+         -> Option<()> {
+            let Some(d) = dirs[k] else { return Some(()) };
+            let along = DVec2::new(d.dot(u), d.dot(w)) / n.dot(d);
+            for b in &blockers[k] {
+                let o = &self.faces[b.face as usize];
+                let polys: &mut dyn Iterator<Item = &[DVec3]> = if o.outline.is_empty() {
+                    &mut o.pieces.iter().map(|t| &t[..])
+                } else {
+                    &mut std::iter::once(&o.outline[..])
+                };
+                for p in polys {
+                    poly.clear();
+                    poly.extend_from_slice(p);
+                    // project each vertex along d onto the plane; h is its height above it
+                    x_in.clear();
+                    x_in.extend(poly.iter().map(|y| {
+                        let h = n.dot(*y - c);
+                        (plane(*y) - along * h, h)
+                    }));
+                    clip_above(x_in, self.tol, shadow);
+                    if shadow.len() >= 3 {
+                        region.subtract_convex(shadow, MAX_PIECES).ok()?;
+                        if region.is_empty() {
+                            return Some(());
+                        }
+                    }
+                }
+            }
+            Some(())
+        };
+        shadows(&mut x.lit, 0, &mut x.clip_in, &mut x.shadow, &mut x.poly)?;
+        let seen = x.lit.area();
+        let a_earth = if dirs[2].is_some() {
+            x.earthlit.clone_from(&x.lit);
+            shadows(
+                &mut x.earthlit,
+                2,
+                &mut x.clip_in,
+                &mut x.shadow,
+                &mut x.poly,
+            )?;
+            x.earthlit.area()
+        } else {
+            seen
+        };
+        let a_sun = if dirs[1].is_some() {
+            shadows(&mut x.lit, 1, &mut x.clip_in, &mut x.shadow, &mut x.poly)?;
+            x.lit.area()
+        } else {
+            seen
+        };
+        Some((a_sun, a_earth))
+    }
+}
+
+/// The part of a convex polygon (vertices with heights `h`) at height above `tol`, as
+/// its projected vertices in `out` (the projection is affine, so clipping before or after
+/// it is the same).
+fn clip_above(poly: &[(DVec2, f64)], tol: f64, out: &mut Vec<DVec2>) {
+    out.clear();
+    let n = poly.len();
+    for i in 0..n {
+        let (p, hp) = poly[i];
+        let (q, hq) = poly[(i + 1) % n];
+        let (dp, dq) = (hp - tol, hq - tol);
+        if dp >= 0.0 {
+            out.push(p);
+        }
+        if (dp > 0.0 && dq < 0.0) || (dp < 0.0 && dq > 0.0) {
+            out.push(p + (q - p) * (dp / (dp - dq)));
+        }
+    }
+}
+
 /// A face that may cast a shadow on (or hide) the face being sampled.
 #[derive(Debug, Clone, Copy)]
 struct Blocker {
+    /// Index of the blocking face.
+    face: u32,
     centre: DVec3,
     radius: f64,
     normal: DVec3,
@@ -344,9 +511,10 @@ impl Blocker {
     }
 }
 
-/// The triangles a face is sampled on: a fan over its convex outline when the face is
-/// a convex polygon (its area equals its hull's), else its own triangles. The centroid
-/// method always samples the mesh's own triangles.
+/// The triangles a face is sampled on, and its outline when it is a convex polygon (its
+/// area equals its hull's). The triangles are a fan over that outline for a convex face
+/// of more than two triangles, else the face's own. The centroid method always samples
+/// the mesh's own triangles and needs no outline.
 fn pieces_of(
     normal: DVec3,
     area: f64,
@@ -354,10 +522,10 @@ fn pieces_of(
     corners: &[[DVec3; 3]],
     vertices: &[DVec3],
     mode: VisibilityMode,
-) -> Vec<[DVec3; 3]> {
+) -> (Vec<[DVec3; 3]>, Vec<DVec3>) {
     let own = || triangles.iter().map(|&t| corners[t as usize]).collect();
-    if mode == VisibilityMode::Centroid || triangles.len() <= 2 {
-        return own();
+    if mode == VisibilityMode::Centroid {
+        return (own(), Vec::new());
     }
     let (u, w) = crate::radiometry::earth::orthonormal_basis(normal);
     let origin = vertices[0];
@@ -394,18 +562,23 @@ fn pieces_of(
         hull.pop();
     }
     if hull.len() < 3 {
-        return own();
+        return (own(), Vec::new());
     }
     let hull_area: f64 = (1..hull.len() - 1)
         .map(|i| 0.5 * cross(&hull[0], &hull[i], &hull[i + 1]))
         .sum();
     if (hull_area - area).abs() > 1e-9 * area {
-        return own(); // not convex (or holes): sample the mesh's triangles
+        return (own(), Vec::new()); // not convex (or holes): the mesh's triangles
     }
     let v = |h: &(f64, f64, usize)| vertices[h.2];
-    (1..hull.len() - 1)
+    let outline = hull.iter().map(v).collect();
+    if triangles.len() <= 2 {
+        return (own(), outline);
+    }
+    let fan = (1..hull.len() - 1)
         .map(|i| [v(&hull[0]), v(&hull[i]), v(&hull[i + 1])])
-        .collect()
+        .collect();
+    (fan, outline)
 }
 
 /// Does the sphere (c_o, r_o) meet the half-infinite cylinder swept by the sphere

@@ -117,6 +117,10 @@ pub struct Scene {
     pub centroid_subdivisions: u32,
     /// Images to render after the light curve (`None`: none, and no cost).
     pub thumbnails: Option<Thumbnails>,
+    /// `adaptive`: clip partly shadowed faces exactly (true, the default) or sample them
+    /// with rays to the tolerance (false; kept to chart and test the sampler, which is
+    /// also the fallback for faces too finely cut by shadows to clip). Not in the request.
+    pub clip_shadows: bool,
 }
 
 /// How rendered radiance maps to 8-bit grey levels.

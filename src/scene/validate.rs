@@ -261,6 +261,7 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         image_samples,
         centroid_subdivisions,
         thumbnails,
+        clip_shadows: true,
     })
 }
 

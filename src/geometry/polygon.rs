@@ -26,18 +26,32 @@ pub fn twice_signed_area(p: &[DVec2]) -> f64 {
 /// The part of a plane (a face) still lit and seen, as disjoint convex pieces.
 #[derive(Debug, Default, Clone)]
 pub struct Region {
-    /// Vertices of all pieces, each piece counter-clockwise.
+    /// Vertices of the pieces, each piece counter-clockwise. Append-only until
+    /// [`Region::reset`]: a piece that is cut leaves its old vertices unused, so pieces
+    /// that a shadow misses are never copied.
     pts: Vec<DVec2>,
-    /// (start, end) of each piece in `pts`.
-    pieces: Vec<(u32, u32)>,
-    // buffers for the next state and for one piece being split
-    next_pts: Vec<DVec2>,
-    next_pieces: Vec<(u32, u32)>,
+    pieces: Vec<Piece>,
+    next_pieces: Vec<Piece>,
+    // buffers for one piece being split
     cur: Vec<DVec2>,
     inside: Vec<DVec2>,
     outside: Vec<DVec2>,
+    /// Edges of the polygon being subtracted: point, unit inward normal.
+    edges: Vec<(DVec2, DVec2)>,
+    /// Bounds of all pieces.
+    lo: DVec2,
+    hi: DVec2,
     /// Lengths below this count as zero, m.
     eps: f64,
+}
+
+/// One convex piece: its vertices `pts[start..end]` and its bounds.
+#[derive(Debug, Clone, Copy)]
+struct Piece {
+    start: u32,
+    end: u32,
+    lo: DVec2,
+    hi: DVec2,
 }
 
 /// Too many pieces: the shadows cut the face up so finely that sampling is cheaper.
@@ -50,6 +64,8 @@ impl Region {
         self.pts.clear();
         self.pieces.clear();
         self.eps = 1e-10 * scale;
+        self.lo = DVec2::splat(f64::INFINITY);
+        self.hi = DVec2::splat(f64::NEG_INFINITY);
     }
 
     /// Adds a convex polygon (either orientation) that overlaps no piece already held.
@@ -64,7 +80,15 @@ impl Region {
         } else {
             self.pts.extend(poly.iter().rev());
         }
-        self.pieces.push((start, self.pts.len() as u32));
+        let (lo, hi) = bounds(poly);
+        self.pieces.push(Piece {
+            start,
+            end: self.pts.len() as u32,
+            lo,
+            hi,
+        });
+        self.lo = self.lo.min(lo);
+        self.hi = self.hi.max(hi);
     }
 
     /// Number of convex pieces.
@@ -80,7 +104,7 @@ impl Region {
     pub fn area(&self) -> f64 {
         self.pieces
             .iter()
-            .map(|&(s, e)| 0.5 * twice_signed_area(&self.pts[s as usize..e as usize]))
+            .map(|p| 0.5 * twice_signed_area(&self.pts[p.start as usize..p.end as usize]))
             .sum()
     }
 
@@ -91,43 +115,59 @@ impl Region {
         if s.len() < 3 || a.abs() <= self.eps * self.eps {
             return Ok(()); // an edge-on blocker casts no shadow of any area
         }
+        let (lo, hi) = bounds(s);
+        let eps = self.eps;
+        if lo.x >= self.hi.x - eps
+            || lo.y >= self.hi.y - eps
+            || hi.x <= self.lo.x + eps
+            || hi.y <= self.lo.y + eps
+        {
+            return Ok(()); // misses every piece
+        }
         let ccw = a > 0.0;
         let vertex = |i: usize| if ccw { s[i] } else { s[s.len() - 1 - i] };
-        let (lo, hi) = bounds(s);
-        self.next_pts.clear();
+        self.edges.clear();
+        for i in 0..s.len() {
+            let (p, q) = (vertex(i), vertex((i + 1) % s.len()));
+            let e = q - p;
+            let len = e.length();
+            if len > eps {
+                self.edges.push((p, e.perp() / len));
+            }
+        }
         self.next_pieces.clear();
+        let keep_from = self.pts.len();
         for k in 0..self.pieces.len() {
-            let (ps, pe) = self.pieces[k];
-            let piece = &self.pts[ps as usize..pe as usize];
-            let (plo, phi) = bounds(piece);
-            let apart = plo.x >= hi.x - self.eps
-                || plo.y >= hi.y - self.eps
-                || phi.x <= lo.x + self.eps
-                || phi.y <= lo.y + self.eps
-                || separated(piece, (0..s.len()).map(vertex), self.eps)
-                || separated_by_own_edges(piece, (0..s.len()).map(vertex), self.eps);
+            let pc = self.pieces[k];
+            let (plo, phi) = (pc.lo, pc.hi);
+            let piece = &self.pts[pc.start as usize..pc.end as usize];
+            let apart = plo.x >= hi.x - eps
+                || plo.y >= hi.y - eps
+                || phi.x <= lo.x + eps
+                || phi.y <= lo.y + eps
+                || self
+                    .edges
+                    .iter()
+                    .any(|&(a, m)| piece.iter().all(|p| m.dot(*p - a) <= eps))
+                || separated_by_own_edges(piece, (0..s.len()).map(vertex), eps);
             if apart {
-                let start = self.next_pts.len() as u32;
-                self.next_pts.extend_from_slice(piece);
-                self.next_pieces.push((start, self.next_pts.len() as u32));
+                self.next_pieces.push(pc);
                 continue;
             }
             self.cur.clear();
             self.cur.extend_from_slice(piece);
-            for i in 0..s.len() {
-                let (a, b) = (vertex(i), vertex((i + 1) % s.len()));
-                split(
-                    &self.cur,
-                    a,
-                    b,
-                    self.eps,
-                    &mut self.inside,
-                    &mut self.outside,
-                );
+            for &(a, m) in &self.edges {
+                split(&self.cur, a, m, eps, &mut self.inside, &mut self.outside);
                 if twice_signed_area(&self.outside) > self.eps * self.eps {
-                    let start = self.next_pts.len() as u32;
-                    self.next_pts.extend_from_slice(&self.outside);
-                    self.next_pieces.push((start, self.next_pts.len() as u32));
+                    let start = self.pts.len() as u32;
+                    self.pts.extend_from_slice(&self.outside);
+                    let (lo, hi) = bounds(&self.outside);
+                    self.next_pieces.push(Piece {
+                        start,
+                        end: self.pts.len() as u32,
+                        lo,
+                        hi,
+                    });
                 }
                 std::mem::swap(&mut self.cur, &mut self.inside);
                 if twice_signed_area(&self.cur) <= self.eps * self.eps {
@@ -135,11 +175,15 @@ impl Region {
                 }
             }
             if self.next_pieces.len() > max_pieces {
+                self.pts.truncate(keep_from);
                 return Err(TooComplex);
             }
         }
-        std::mem::swap(&mut self.pts, &mut self.next_pts);
         std::mem::swap(&mut self.pieces, &mut self.next_pieces);
+        (self.lo, self.hi) = self.pieces.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(p.lo), hi.max(p.hi)),
+        );
         Ok(())
     }
 }
@@ -158,22 +202,6 @@ fn side(a: DVec2, b: DVec2, p: DVec2) -> f64 {
     e.perp_dot(p - a) / e.length()
 }
 
-/// Is all of `piece` on the outer (right) side of some edge of the counter-clockwise
-/// polygon `s`?
-fn separated(piece: &[DVec2], s: impl Iterator<Item = DVec2> + Clone, eps: f64) -> bool {
-    let first = s.clone().next();
-    let mut prev = None;
-    for v in s.chain(first) {
-        if let Some(a) = prev {
-            if piece.iter().all(|p| side(a, v, *p) <= eps) {
-                return true;
-            }
-        }
-        prev = Some(v);
-    }
-    false
-}
-
 /// Is all of `s` on the outer side of some edge of the counter-clockwise `piece`?
 fn separated_by_own_edges(
     piece: &[DVec2],
@@ -187,12 +215,13 @@ fn separated_by_own_edges(
     })
 }
 
-/// Splits the convex polygon `poly` by the line a→b into the part on its left (`inside`)
-/// and on its right (`outside`); vertices within `eps` of the line go to both.
+/// Splits the convex polygon `poly` by the line through `a` with unit normal `m` into
+/// the part on the normal's side (`inside`) and the rest (`outside`); vertices within
+/// `eps` of the line go to both.
 fn split(
     poly: &[DVec2],
     a: DVec2,
-    b: DVec2,
+    m: DVec2,
     eps: f64,
     inside: &mut Vec<DVec2>,
     outside: &mut Vec<DVec2>,
@@ -200,10 +229,8 @@ fn split(
     inside.clear();
     outside.clear();
     let n = poly.len();
-    let e = b - a;
-    let len = e.length();
     let d = |p: DVec2| {
-        let s = e.perp_dot(p - a) / len;
+        let s = m.dot(p - a);
         if s.abs() <= eps {
             0.0
         } else {

@@ -358,19 +358,21 @@ impl Visibility {
     }
 }
 
-/// Above this many convex pieces per face, shadows are sampled instead of clipped.
-const MAX_PIECES: usize = 256;
-/// Below this cosine between a face's normal and a direction the shadow projection
-/// stretches too far for exact clipping: such faces are sampled.
-const MIN_COS_EXACT: f64 = 1e-4;
+/// Above this many convex pieces per face, shadows are sampled instead of clipped (the
+/// 16×48 dish of `examples/scale` needs up to a few hundred).
+const MAX_PIECES: usize = 4096;
+/// Shadows along directions closer than this cosine to a face's plane are cast as if
+/// from this cosine: the projection stretches by 1/cos, and 1e6 keeps f64 coordinates
+/// of a few object radii exact to ~1e-10 of the face.
+const MIN_COS_EXACT: f64 = 1e-6;
 
 impl Visibility {
     /// Exact areas (m²) of `face` (side normal `n`) that are seen and sunlit, and seen
     /// and earthlit: the face minus the parallel projections onto its plane of the parts of
     /// the blockers in front of it. A point of the face is hidden along d exactly when the
     /// ray from it along d meets a blocker in front of the plane, i.e. when it lies in
-    /// that projection. `None` when the face is nearly edge-on to a direction or the
-    /// shadows cut it into too many pieces (the caller samples instead).
+    /// that projection. `None` when the shadows cut it into too many pieces (the caller
+    /// samples instead).
     fn exact_area(
         &self,
         x: &mut ExactScratch,
@@ -379,9 +381,24 @@ impl Visibility {
         dirs: &[Option<DVec3>; 3],
         blockers: &[Vec<Blocker>; 3],
     ) -> Option<(f64, f64)> {
-        if dirs.iter().flatten().any(|d| n.dot(*d) < MIN_COS_EXACT) {
-            return None;
-        }
+        // A direction at or below the face's horizon still lights it through the upper
+        // part of the Sun's disk: its shadows are those of a direction just above the
+        // horizon (the light it brings is already weighted by the BRDF's disk average).
+        let dirs = dirs.map(|d| {
+            d.map(|d| {
+                let c = n.dot(d);
+                if c >= MIN_COS_EXACT {
+                    return d;
+                }
+                let t = d - n * c;
+                let len = t.length();
+                if len == 0.0 {
+                    return n;
+                }
+                let s = MIN_COS_EXACT;
+                t / len * (1.0 - s * s).sqrt() + n * s
+            })
+        });
         let f = &self.faces[face];
         let (u, w) = crate::radiometry::earth::orthonormal_basis(n);
         let c = f.centroid;

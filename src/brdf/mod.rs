@@ -139,6 +139,85 @@ impl Brdf {
 
 /// Half vector of `l` and `v`, or `None` when they are opposite (phase 180°), where
 /// no specular reflection towards the observer is possible.
+/// The part of a microfacet BRDF that depends on the light and view directions only:
+/// one per epoch, material and light instead of one per face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Half {
+    /// Unit half vector.
+    pub h: DVec3,
+    /// cos of the angle between the light and the half vector.
+    pub cos_b: f64,
+    /// Fresnel reflectance at that angle.
+    pub fresnel: f64,
+}
+
+/// A BRDF with its light direction `l` and view direction `v` fixed (one epoch): the
+/// half vector and the (complex) Fresnel term are computed once, so each face costs
+/// only its own cosines and slope distribution.
+#[derive(Debug, Clone, Copy)]
+pub struct Fixed<'a> {
+    brdf: &'a Brdf,
+    dirs: Directions,
+}
+
+/// A light and a view direction with the face-independent part of a given BRDF.
+#[derive(Debug, Clone, Copy)]
+pub struct Directions {
+    l: DVec3,
+    v: DVec3,
+    half: Option<Half>,
+}
+
+impl<'a> Fixed<'a> {
+    pub fn new(brdf: &'a Brdf, l: DVec3, v: DVec3) -> Fixed<'a> {
+        Fixed {
+            brdf,
+            dirs: Directions::new(brdf, l, v),
+        }
+    }
+
+    /// f·cosθi·cosθr (sr⁻¹) of a face with this frame: [`Brdf::projected`] exactly.
+    #[inline]
+    pub fn projected(&self, frame: &Frame) -> f64 {
+        self.dirs.projected(self.brdf, frame)
+    }
+}
+
+impl Directions {
+    /// `l`, `v` and what `brdf` needs of them alone.
+    pub fn new(brdf: &Brdf, l: DVec3, v: DVec3) -> Directions {
+        let half = match brdf {
+            Brdf::SeedMicrofacet(m) => m.half(l, v),
+            Brdf::RoughConductor(m) => m.half(l, v),
+            Brdf::Lambert(_) | Brdf::AshikhminShirley(_) => None,
+        };
+        Directions { l, v, half }
+    }
+
+    /// f·cosθi·cosθr (sr⁻¹) of `brdf` — the one these directions were made for — on a
+    /// face with this frame.
+    #[inline]
+    pub fn projected(&self, brdf: &Brdf, frame: &Frame) -> f64 {
+        let (l, v) = (self.l, self.v);
+        let ci = frame.n.dot(l);
+        let cr = frame.n.dot(v);
+        if ci <= 0.0 || cr <= 0.0 {
+            return 0.0;
+        }
+        let value = match brdf {
+            Brdf::Lambert(m) => m.projected(ci, cr),
+            Brdf::SeedMicrofacet(m) => m.projected_fixed(frame.n, &self.half, ci, cr),
+            Brdf::RoughConductor(m) => m.projected_fixed(frame.n, &self.half, ci, cr),
+            Brdf::AshikhminShirley(m) => m.projected(frame, l, v, ci, cr),
+        };
+        if value.is_finite() && value > 0.0 {
+            value
+        } else {
+            0.0
+        }
+    }
+}
+
 #[inline]
 pub(crate) fn half_vector(l: DVec3, v: DVec3) -> Option<DVec3> {
     let h = l + v;

@@ -3,7 +3,7 @@
 //! Fresnel; f = F·D·G/(4 cosθi cosθr), so f·cosθi·cosθr = F·D·G/4. Optional Lambert term.
 
 use super::fresnel::Fresnel;
-use super::half_vector;
+use super::{half_vector, Half};
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, PI};
 
@@ -31,20 +31,38 @@ impl RoughConductor {
     /// f·cosθi·cosθr, sr⁻¹.
     #[inline]
     pub fn projected(&self, n: DVec3, l: DVec3, v: DVec3, ci: f64, cr: f64) -> f64 {
-        let diffuse = self.kd * FRAC_1_PI * ci * cr;
+        self.projected_fixed(n, &self.half(l, v), ci, cr)
+    }
+
+    /// What the specular term needs that depends on the directions only, not on the face.
+    #[inline]
+    pub fn half(&self, l: DVec3, v: DVec3) -> Option<Half> {
         if self.ks == 0.0 {
-            return diffuse;
+            return None;
         }
-        let Some(h) = half_vector(l, v) else {
+        let h = half_vector(l, v)?;
+        let cb = l.dot(h);
+        Some(Half {
+            h,
+            cos_b: cb,
+            fresnel: self.fresnel.reflectance(cb),
+        })
+    }
+
+    /// [`RoughConductor::projected`] with the face-independent part given.
+    #[inline]
+    pub fn projected_fixed(&self, n: DVec3, half: &Option<Half>, ci: f64, cr: f64) -> f64 {
+        let diffuse = self.kd * FRAC_1_PI * ci * cr;
+        let Some(half) = half else {
             return diffuse;
         };
-        let ch = n.dot(h);
+        let ch = n.dot(half.h);
         if ch <= 0.0 {
             return diffuse;
         }
         let d = beckmann_d(ch, self.alpha);
         let g = 1.0 / (1.0 + lambda(ci, self.alpha) + lambda(cr, self.alpha));
-        diffuse + self.ks * self.fresnel.reflectance(l.dot(h)) * d * g * 0.25
+        diffuse + self.ks * half.fresnel * d * g * 0.25
     }
 }
 

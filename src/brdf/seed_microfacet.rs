@@ -3,7 +3,7 @@
 //! f·cosθi·cosθr = k^D/π·cosθi·cosθr + k^M·C·V·F, which is finite at grazing angles.
 
 use super::fresnel::Fresnel;
-use super::half_vector;
+use super::{half_vector, Half};
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
 
@@ -33,23 +33,40 @@ impl SeedMicrofacet {
     /// f·cosθi·cosθr, sr⁻¹; `ci`, `cr` > 0 are given by the caller.
     #[inline]
     pub fn projected(&self, n: DVec3, l: DVec3, v: DVec3, ci: f64, cr: f64) -> f64 {
-        let diffuse = self.kd * FRAC_1_PI * ci * cr;
+        self.projected_fixed(n, &self.half(l, v), ci, cr)
+    }
+
+    /// What the specular term needs that depends on the directions only, not on the face.
+    #[inline]
+    pub fn half(&self, l: DVec3, v: DVec3) -> Option<Half> {
         if self.km == 0.0 {
-            return diffuse;
+            return None;
         }
-        let Some(h) = half_vector(l, v) else {
+        let h = half_vector(l, v)?;
+        let cb = l.dot(h).max(0.0);
+        Some(Half {
+            h,
+            cos_b: cb,
+            fresnel: self.fresnel.reflectance(cb),
+        })
+    }
+
+    /// [`SeedMicrofacet::projected`] with the face-independent part given.
+    #[inline]
+    pub fn projected_fixed(&self, n: DVec3, half: &Option<Half>, ci: f64, cr: f64) -> f64 {
+        let diffuse = self.kd * FRAC_1_PI * ci * cr;
+        let Some(half) = half else {
             return diffuse;
         };
-        let ca = n.dot(h);
+        let ca = n.dot(half.h);
         if ca <= 0.0 {
             return diffuse;
         }
-        let cb = l.dot(h).max(0.0);
         diffuse
             + self.km
                 * slope_distribution(ca, self.slope_rms)
-                * v_cavity(ca, cb, ci, cr)
-                * self.fresnel.reflectance(cb)
+                * v_cavity(ca, half.cos_b, ci, cr)
+                * half.fresnel
     }
 }
 

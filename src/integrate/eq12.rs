@@ -7,7 +7,8 @@
 
 use super::visibility::Uncertain;
 use super::Prepared;
-use crate::brdf::{sun_disk, Frame};
+use crate::brdf::sun_disk::SunLight;
+use crate::brdf::{Fixed, Frame};
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
 use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination};
 use glam::DVec3;
@@ -91,11 +92,30 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     let sun_radius = sun::angular_radius(epoch.sun_distance_m);
 
     // Pass 1: which faces send light to the observer, and how much if fully visible.
+    // Per material, what does not depend on the face is computed once: the Sun's and each
+    // earthshine beam's half vector and Fresnel term.
+    let suns: Vec<SunLight> = scene
+        .materials
+        .iter()
+        .map(|m| SunLight::new(&m.brdf, l, v, sun_radius))
+        .collect();
+    let beams_fixed: Vec<Vec<(f64, Fixed)>> = scene
+        .materials
+        .iter()
+        .map(|m| {
+            earthshine
+                .beams
+                .iter()
+                .map(|b| (b.irradiance, Fixed::new(&m.brdf, b.dir, v)))
+                .collect()
+        })
+        .collect();
     scratch.lit.clear();
     scratch.visibility.reset();
     let mut unshadowed = 0.0;
     for (i, face) in p.faces.faces.iter().enumerate() {
-        let material = &scene.materials[face.material as usize];
+        let m = face.material as usize;
+        let material = &scene.materials[m];
         let cr = face.normal.dot(v);
         let side = if cr > 0.0 {
             1.0
@@ -110,14 +130,13 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         };
         let sun_term = if es > 0.0 {
             // the Sun as a disk: a narrow lobe's glint is the disk's reflection, not a spike
-            es * sun_disk::projected(&material.brdf, &frame, l, v, sun_radius)
+            es * suns[m].projected(&frame)
         } else {
             0.0
         };
-        let earth_term: f64 = earthshine
-            .beams
+        let earth_term: f64 = beams_fixed[m]
             .iter()
-            .map(|b| b.irradiance * material.brdf.projected(&frame, b.dir, v))
+            .map(|(irradiance, fixed)| irradiance * fixed.projected(&frame))
             .sum();
         if sun_term > 0.0 || earth_term > 0.0 {
             unshadowed += (sun_term + earth_term) * face.area;

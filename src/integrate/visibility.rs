@@ -106,6 +106,8 @@ pub struct Visibility {
     tol: f64,
     /// Clip partly shadowed faces exactly where possible (else always sample).
     clip: bool,
+    /// Cell size of the per-epoch face grids, m: the median face diameter.
+    grid_cell: f64,
 }
 
 /// Per-thread cache of patch-level results, valid within one epoch.
@@ -115,6 +117,155 @@ pub struct Cache {
     /// Flagged occluder patches for view, sun, earth (None: not computed yet).
     flagged: [Option<Vec<u32>>; 3],
     exact: ExactScratch,
+    /// Faces binned across each direction (built on first use in an epoch).
+    grids: [FaceGrid; 3],
+    /// Per face: the query that last returned it (deduplicates multi-cell faces).
+    stamp: Stamp,
+}
+
+/// Last-query marks per face, so a face in several cells is returned once.
+#[derive(Default)]
+struct Stamp {
+    marks: Vec<u32>,
+    current: u32,
+}
+
+/// All faces binned by their bounding discs projected on the plane across a direction:
+/// a face's shadow along the direction can only fall on faces whose discs overlap its.
+#[derive(Default)]
+struct FaceGrid {
+    dir: Option<DVec3>,
+    u: DVec3,
+    w: DVec3,
+    lo: DVec2,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    /// Cell c holds items[start[c]..start[c + 1]].
+    start: Vec<u32>,
+    items: Vec<u32>,
+    /// Faces wider than two cells: returned by every query (few: a body's sides).
+    big: Vec<u32>,
+    /// Number of faces binned.
+    faces: usize,
+}
+
+/// Most cells per side of a face grid.
+const GRID_MAX_CELLS: usize = 512;
+/// Above this many faces in the flagged patches, blockers come from the face grid.
+const GRID_MIN_FACES: usize = 64;
+
+impl FaceGrid {
+    fn build(&mut self, faces: &[FaceGeom], d: DVec3, cell: f64) {
+        let (u, w) = crate::radiometry::earth::orthonormal_basis(d);
+        let at = |c: DVec3| DVec2::new(c.dot(u), c.dot(w));
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for f in faces {
+            let p = at(f.centroid);
+            lo = lo.min(p - f.radius);
+            hi = hi.max(p + f.radius);
+        }
+        let extent = (hi - lo).max_element().max(f64::MIN_POSITIVE);
+        let cell = cell.max(extent / GRID_MAX_CELLS as f64);
+        let nx = (((hi.x - lo.x) / cell) as usize + 1).min(GRID_MAX_CELLS);
+        let ny = (((hi.y - lo.y) / cell) as usize + 1).min(GRID_MAX_CELLS);
+        *self = FaceGrid {
+            dir: Some(d),
+            u,
+            w,
+            lo,
+            cell,
+            nx,
+            ny,
+            start: std::mem::take(&mut self.start),
+            items: std::mem::take(&mut self.items),
+            big: std::mem::take(&mut self.big),
+            faces: faces.len(),
+        };
+        self.start.clear();
+        self.start.resize(nx * ny + 1, 0);
+        self.big.clear();
+        // counting sort of (cell, face) pairs
+        for pass in 0..2 {
+            for (i, f) in faces.iter().enumerate() {
+                if f.radius > 2.0 * cell {
+                    if pass == 0 {
+                        self.big.push(i as u32);
+                    }
+                    continue;
+                }
+                let (x0, y0, x1, y1) = self.span(at(f.centroid), f.radius);
+                for y in y0..=y1 {
+                    for x in x0..=x1 {
+                        let c = y * nx + x;
+                        if pass == 0 {
+                            self.start[c + 1] += 1;
+                        } else {
+                            let slot = self.start[c] as usize;
+                            self.items[slot] = i as u32;
+                            self.start[c] += 1;
+                        }
+                    }
+                }
+            }
+            if pass == 0 {
+                for c in 0..nx * ny {
+                    self.start[c + 1] += self.start[c];
+                }
+                self.items.clear();
+                self.items.resize(self.start[nx * ny] as usize, 0);
+            } else {
+                // start[c] now holds the end of cell c: shift back
+                for c in (1..=nx * ny).rev() {
+                    self.start[c] = self.start[c - 1];
+                }
+                self.start[0] = 0;
+            }
+        }
+    }
+
+    /// Cells covered by the disc at `p` (grid plane coordinates) of radius `r`.
+    #[inline]
+    fn span(&self, p: DVec2, r: f64) -> (usize, usize, usize, usize) {
+        let cell_of =
+            |v: f64, lo: f64, n: usize| (((v - lo) / self.cell).max(0.0) as usize).min(n - 1);
+        (
+            cell_of(p.x - r, self.lo.x, self.nx),
+            cell_of(p.y - r, self.lo.y, self.ny),
+            cell_of(p.x + r, self.lo.x, self.nx),
+            cell_of(p.y + r, self.lo.y, self.ny),
+        )
+    }
+
+    /// Calls `found` once for every face whose disc may overlap the disc of radius `r`
+    /// about `centre` (m) seen along the grid's direction.
+    fn query(&self, centre: DVec3, r: f64, stamp: &mut Stamp, mut found: impl FnMut(u32)) {
+        if stamp.current == u32::MAX {
+            stamp.marks.clear();
+            stamp.current = 0;
+        }
+        if stamp.marks.len() < self.faces {
+            stamp.marks.resize(self.faces, 0);
+        }
+        stamp.current += 1;
+        for &g in &self.big {
+            found(g);
+        }
+        let p = DVec2::new(centre.dot(self.u), centre.dot(self.w));
+        let (x0, y0, x1, y1) = self.span(p, r);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let c = y * self.nx + x;
+                for &g in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
+                    let m = &mut stamp.marks[g as usize];
+                    if *m != stamp.current {
+                        *m = stamp.current;
+                        found(g);
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Buffers for [`Visibility::exact_area`].
@@ -135,6 +286,9 @@ impl Cache {
     pub fn reset(&mut self) {
         self.key = None;
         self.flagged = [None, None, None];
+        for g in &mut self.grids {
+            g.dir = None;
+        }
     }
 }
 
@@ -182,9 +336,15 @@ impl Visibility {
                     radius: f.radius,
                     area: f.area,
                     two_sided: scene.materials[f.material as usize].two_sided,
+                    // a convex face's linear tests (which side of a plane) are decided by
+                    // its corners: a subdivided side keeps 4 vertices, not 81
+                    vertices: if outline.is_empty() {
+                        vertices
+                    } else {
+                        outline.clone()
+                    },
                     pieces,
                     outline,
-                    vertices,
                     patch: (i / per_patch) as u32,
                 }
             })
@@ -228,6 +388,11 @@ impl Visibility {
             candidates,
             tol,
             clip: scene.clip_shadows,
+            grid_cell: {
+                let mut d: Vec<f64> = faces.faces.iter().map(|f| 2.0 * f.radius).collect();
+                d.sort_by(f64::total_cmp);
+                d.get(d.len() / 2).copied().unwrap_or(1.0).max(1e-9 * scale)
+            },
         }
     }
 
@@ -254,20 +419,30 @@ impl Visibility {
         d: DVec3,
         out: &mut Vec<Blocker>,
     ) {
-        let f = &self.faces[face];
         for &p in flagged {
             for g in self.patches[p as usize].faces.clone() {
-                let g = g as usize;
+                self.consider_blocker(face, n, g as usize, d, out);
+            }
+        }
+    }
+
+    /// Face-level tests of face `g` as a blocker of `face` (side normal `n`) along `d`;
+    /// pushes it to `out` when none proves it harmless.
+    #[inline]
+    fn consider_blocker(&self, face: usize, n: DVec3, g: usize, d: DVec3, out: &mut Vec<Blocker>) {
+        let f = &self.faces[face];
+        {
+            {
                 if g == face {
-                    continue;
+                    return;
                 }
                 let o = &self.faces[g];
+                if !reaches(f.centroid, f.radius, o.centroid, o.radius, d) {
+                    return;
+                }
                 // the occluder must reach in front of the face's lit/seen side
                 if !reaches_front(o, n, f.centroid, self.tol) {
-                    continue;
-                }
-                if !reaches(f.centroid, f.radius, o.centroid, o.radius, d) {
-                    continue;
+                    return;
                 }
                 let blocker = Blocker {
                     face: g as u32,
@@ -285,7 +460,7 @@ impl Visibility {
                 };
                 // half-space proof with the face's own vertices
                 if blocker.half_space_clear(d, &f.vertices, self.tol) {
-                    continue;
+                    return;
                 }
                 out.push(blocker);
             }
@@ -336,7 +511,22 @@ impl Visibility {
         for (k, d) in directions.iter().enumerate() {
             let Some(d) = *d else { continue };
             let flagged = cache.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
-            if !flagged.is_empty() {
+            let count: usize = flagged
+                .iter()
+                .map(|&p| self.patches[p as usize].faces.len())
+                .sum();
+            if count > GRID_MIN_FACES {
+                // many faces to test (a finely meshed curved part): ask the epoch's grid of
+                // faces seen along d for those whose shadow can fall on this one
+                let grid = &mut cache.grids[k];
+                if grid.dir != Some(d) {
+                    grid.build(&self.faces, d, self.grid_cell);
+                }
+                let out = &mut s.blockers[k];
+                grid.query(f.centroid, f.radius, &mut cache.stamp, |g| {
+                    self.consider_blocker(face, n, g as usize, d, out)
+                });
+            } else if count > 0 {
                 self.face_blockers(face, n, flagged, d, &mut s.blockers[k]);
             }
         }
@@ -864,5 +1054,66 @@ impl<'a> Sampler<'a> {
         self.refine([ab, p[1], bc], Some([vab, v[1], vbc]), q, depth + 1, tol);
         self.refine([ca, bc, p[2]], Some([vca, vbc, v[2]]), q, depth + 1, tol);
         self.refine([ab, bc, ca], Some([vab, vbc, vca]), q, depth + 1, tol);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn face_at(centroid: DVec3, radius: f64) -> FaceGeom {
+        FaceGeom {
+            normal: DVec3::Z,
+            centroid,
+            radius,
+            area: 1.0,
+            two_sided: false,
+            pieces: Vec::new(),
+            outline: Vec::new(),
+            vertices: Vec::new(),
+            patch: 0,
+        }
+    }
+
+    #[test]
+    fn face_grid_returns_every_face_whose_shadow_can_reach() {
+        // Against brute force: every face g with reaches(f, g, d) must come back from the
+        // query for f, once. Small and large faces (the big list), directions off the axes.
+        let mut seed = 7u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let faces: Vec<FaceGeom> = (0..600)
+            .map(|i| {
+                let c = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 4.0 - 2.0, rnd() * 3.0);
+                let r = if i % 50 == 0 { 2.0 } else { 0.02 + 0.1 * rnd() };
+                face_at(c, r)
+            })
+            .collect();
+        let mut grid = FaceGrid::default();
+        let mut stamp = Stamp::default();
+        for d in [
+            DVec3::new(0.3, -0.5, 0.8).normalize(),
+            DVec3::new(-0.9, 0.1, 0.05).normalize(),
+            DVec3::Z,
+        ] {
+            grid.build(&faces, d, 0.1);
+            for (i, f) in faces.iter().enumerate() {
+                let mut got = vec![0u32; faces.len()];
+                grid.query(f.centroid, f.radius, &mut stamp, |g| got[g as usize] += 1);
+                for (j, g) in faces.iter().enumerate() {
+                    assert!(got[j] <= 1, "face {j} returned {} times", got[j]);
+                    if j != i && reaches(f.centroid, f.radius, g.centroid, g.radius, d) {
+                        assert_eq!(
+                            got[j], 1,
+                            "direction {d}: face {j} can shadow {i} but was not returned"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

@@ -114,7 +114,7 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         let e = methods::errors(&r.irradiance, &reference.irradiance);
         eprintln!(
             "  {:<9} {:<22} max {:.2e}  rms {:.2e}  {:.4} ms/epoch",
-            setting.method().name(),
+            setting.name(),
             setting.label(),
             e.max,
             e.rms,
@@ -239,5 +239,26 @@ fn auto_speedup(rows: &[(Run, methods::Errors)]) -> Option<String> {
             "auto (tolerance 1e-3) reaches max error {:.2e}, which no adaptive setting of the sweep reaches",
             auto_e.max
         ),
-    })
+    } + &sampler_comparison(rows, auto, auto_e).unwrap_or_default())
+}
+
+/// Auto against the ray sampler (adaptive's fallback, everywhere): the cheapest sampled
+/// run at least as accurate as auto, or else the most accurate one.
+fn sampler_comparison(
+    rows: &[(Run, methods::Errors)],
+    auto: &Run,
+    auto_e: &methods::Errors,
+) -> Option<String> {
+    let sampled = || rows.iter().filter(|(r, _)| matches!(r.setting, Setting::Sampled { .. }));
+    let (s, s_e) = sampled()
+        .filter(|(_, e)| e.max <= auto_e.max)
+        .min_by(|a, b| a.0.ms_per_epoch.total_cmp(&b.0.ms_per_epoch))
+        .or_else(|| sampled().min_by(|a, b| a.1.max.total_cmp(&b.1.max)))?;
+    Some(format!(
+        "; against the ray sampler: sampled at {} has max error {:.2e} at {:.4} ms/epoch, x{:.1} the time of auto",
+        s.setting.label(),
+        s_e.max,
+        s.ms_per_epoch,
+        s.ms_per_epoch / auto.ms_per_epoch
+    ))
 }

@@ -249,7 +249,10 @@ fn sampler_comparison(
     auto: &Run,
     auto_e: &methods::Errors,
 ) -> Option<String> {
-    let sampled = || rows.iter().filter(|(r, _)| matches!(r.setting, Setting::Sampled { .. }));
+    let sampled = || {
+        rows.iter()
+            .filter(|(r, _)| matches!(r.setting, Setting::Sampled { .. }))
+    };
     let (s, s_e) = sampled()
         .filter(|(_, e)| e.max <= auto_e.max)
         .min_by(|a, b| a.0.ms_per_epoch.total_cmp(&b.0.ms_per_epoch))

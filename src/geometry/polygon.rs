@@ -158,6 +158,16 @@ impl Region {
                 k += 1;
                 continue;
             }
+            let inside = self
+                .edges
+                .iter()
+                .all(|&(a, m)| piece.iter().all(|p| m.dot(*p - a) >= -eps));
+            if inside {
+                // wholly in the shadow (a face under a larger blocker): no cuts needed
+                self.pieces.swap_remove(k);
+                live -= 1;
+                continue;
+            }
             self.cur.clear();
             self.cur.extend_from_slice(piece);
             for &(a, m) in &self.edges {

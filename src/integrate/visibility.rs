@@ -152,8 +152,10 @@ struct FaceGrid {
 
 /// Most cells per side of a face grid.
 const GRID_MAX_CELLS: usize = 512;
-/// Above this many faces in the flagged patches, blockers come from the face grid.
-const GRID_MIN_FACES: usize = 64;
+/// Above this many faces in the flagged patches, blockers come from the face grid (below,
+/// testing them all is cheaper than binning every face: measured on the box-wings of
+/// `examples/scale`).
+const GRID_MIN_FACES: usize = 400;
 
 impl FaceGrid {
     fn build(&mut self, faces: &[FaceGeom], d: DVec3, cell: f64) {

@@ -93,11 +93,15 @@ impl<'a> Prepared<'a> {
             Method::Auto | Method::Adaptive => (
                 Some(Visibility::build(scene, &faces, VisibilityMode::Adaptive)),
                 format!(
-                    "{}adaptive: {} faces from {} triangles; rays only for faces an occluder may touch, refined to tolerance {:e}",
+                    "{}adaptive: {} faces from {} triangles; faces an occluder may touch {}",
                     if scene.method == Method::Auto { "auto → " } else { "" },
                     faces.len(),
                     scene.mesh.triangles.len(),
-                    scene.tolerance
+                    if scene.clip_shadows {
+                        format!("are clipped exactly (ray-sampled to tolerance {:e} where shadows cut one too finely)", scene.tolerance)
+                    } else {
+                        format!("are ray-sampled to tolerance {:e}", scene.tolerance)
+                    }
                 ),
             ),
             Method::Centroid => (

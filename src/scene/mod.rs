@@ -76,7 +76,8 @@ impl Default for Illumination {
 pub enum Method {
     /// Convex meshes: no rays; otherwise `Adaptive`.
     Auto,
-    /// Per-face classification, partial faces refined to the tolerance.
+    /// Per-face classification; partly shadowed faces clipped exactly (ray-sampled to the
+    /// tolerance where shadows cut a face too finely).
     Adaptive,
     /// One ray per direction at each triangle's centroid: all lit or all dark.
     Centroid,

@@ -19,7 +19,8 @@ pub struct Request {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub illumination: Option<IlluminationSpec>,
     /// Relative tolerance of the lit-and-visible area integration for partly shadowed
-    /// faces (fraction of the epoch's unshadowed signal). Default 1e-3.
+    /// faces (fraction of the epoch's unshadowed signal), where they are ray-sampled:
+    /// faces clipped exactly (the usual case) are exact whatever it says. Default 1e-3.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(example = 1e-3)]
     pub tolerance: Option<f64>,

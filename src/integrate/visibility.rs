@@ -432,41 +432,37 @@ impl Visibility {
     /// pushes it to `out` when none proves it harmless.
     #[inline]
     fn consider_blocker(&self, face: usize, n: DVec3, g: usize, d: DVec3, out: &mut Vec<Blocker>) {
-        let f = &self.faces[face];
-        {
-            {
-                if g == face {
-                    return;
-                }
-                let o = &self.faces[g];
-                if !reaches(f.centroid, f.radius, o.centroid, o.radius, d) {
-                    return;
-                }
-                // the occluder must reach in front of the face's lit/seen side
-                if !reaches_front(o, n, f.centroid, self.tol) {
-                    return;
-                }
-                let blocker = Blocker {
-                    face: g as u32,
-                    centre: o.centroid,
-                    radius: o.radius,
-                    normal: o.normal,
-                    // Width of shadow to hunt for: the blocker's radius. Its true width
-                    // (a thin strip's) would find narrower shadows, but the small faces of
-                    // a curved part then force fine sampling under their joint shadow,
-                    // which is wide: ~6x the rays on the box-wing. Known limit: a shadow
-                    // narrower than its caster's radius can fall between samples.
-                    feature: o.radius,
-                    // largest shadow it can cast on this face's plane
-                    shadow_area: o.area * d.dot(o.normal).abs() / n.dot(d).max(1e-3),
-                };
-                // half-space proof with the face's own vertices
-                if blocker.half_space_clear(d, &f.vertices, self.tol) {
-                    return;
-                }
-                out.push(blocker);
-            }
+        if g == face {
+            return;
         }
+        let f = &self.faces[face];
+        let o = &self.faces[g];
+        if !reaches(f.centroid, f.radius, o.centroid, o.radius, d) {
+            return;
+        }
+        // the occluder must reach in front of the face's lit/seen side
+        if !reaches_front(o, n, f.centroid, self.tol) {
+            return;
+        }
+        let blocker = Blocker {
+            face: g as u32,
+            centre: o.centroid,
+            radius: o.radius,
+            normal: o.normal,
+            // Width of shadow to hunt for: the blocker's radius. Its true width
+            // (a thin strip's) would find narrower shadows, but the small faces of
+            // a curved part then force fine sampling under their joint shadow,
+            // which is wide: ~6x the rays on the box-wing. Known limit: a shadow
+            // narrower than its caster's radius can fall between samples.
+            feature: o.radius,
+            // largest shadow it can cast on this face's plane
+            shadow_area: o.area * d.dot(o.normal).abs() / n.dot(d).max(1e-3),
+        };
+        // half-space proof with the face's own vertices
+        if blocker.half_space_clear(d, &f.vertices, self.tol) {
+            return;
+        }
+        out.push(blocker);
     }
 
     /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on

@@ -42,21 +42,11 @@ impl Brdf {
     pub fn projected(&self, frame: &Frame, l: DVec3, v: DVec3) -> f64 {
         let ci = frame.n.dot(l);
         let cr = frame.n.dot(v);
+        // below either horizon: no light, and no half vector or Fresnel term to compute
         if ci <= 0.0 || cr <= 0.0 {
             return 0.0;
         }
-        let value = match self {
-            Brdf::Lambert(m) => m.projected(ci, cr),
-            Brdf::SeedMicrofacet(m) => m.projected(frame.n, l, v, ci, cr),
-            Brdf::RoughConductor(m) => m.projected(frame.n, l, v, ci, cr),
-            Brdf::AshikhminShirley(m) => m.projected(frame, l, v, ci, cr),
-        };
-        // A model must never let a NaN out; treat any as no light and keep the sum clean.
-        if value.is_finite() && value > 0.0 {
-            value
-        } else {
-            0.0
-        }
+        Directions::new(self, l, v).projected(self, frame)
     }
 
     /// The model's name as used in requests.
@@ -137,8 +127,6 @@ impl Brdf {
     }
 }
 
-/// Half vector of `l` and `v`, or `None` when they are opposite (phase 180°), where
-/// no specular reflection towards the observer is possible.
 /// The part of a microfacet BRDF that depends on the light and view directions only:
 /// one per epoch, material and light instead of one per face.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -149,6 +137,21 @@ pub struct Half {
     pub cos_b: f64,
     /// Fresnel reflectance at that angle.
     pub fresnel: f64,
+}
+
+impl Half {
+    /// For light from `l` seen from `v` on microfacets with this Fresnel term; `None`
+    /// when `l` and `v` are opposite.
+    #[inline]
+    pub fn new(l: DVec3, v: DVec3, fresnel: &fresnel::Fresnel) -> Option<Half> {
+        let h = half_vector(l, v)?;
+        let cos_b = l.dot(h).max(0.0);
+        Some(Half {
+            h,
+            cos_b,
+            fresnel: fresnel.reflectance(cos_b),
+        })
+    }
 }
 
 /// A BRDF with its light direction `l` and view direction `v` fixed (one epoch): the
@@ -196,7 +199,9 @@ impl Directions {
 
     /// f·cosθi·cosθr (sr⁻¹) of `brdf` — the one these directions were made for — on a
     /// face with this frame.
-    #[inline]
+    // always inlined: the per-face loops depend on it, and `Brdf::projected` calling it
+    // too would otherwise tip the compiler into an out-of-line call
+    #[inline(always)]
     pub fn projected(&self, brdf: &Brdf, frame: &Frame) -> f64 {
         let (l, v) = (self.l, self.v);
         let ci = frame.n.dot(l);
@@ -210,6 +215,7 @@ impl Directions {
             Brdf::RoughConductor(m) => m.projected_fixed(frame.n, &self.half, ci, cr),
             Brdf::AshikhminShirley(m) => m.projected(frame, l, v, ci, cr),
         };
+        // A model must never let a NaN out; treat any as no light and keep the sum clean.
         if value.is_finite() && value > 0.0 {
             value
         } else {
@@ -218,6 +224,8 @@ impl Directions {
     }
 }
 
+/// Half vector of `l` and `v`, or `None` when they are opposite (phase 180°), where
+/// no specular reflection towards the observer is possible.
 #[inline]
 pub(crate) fn half_vector(l: DVec3, v: DVec3) -> Option<DVec3> {
     let h = l + v;

@@ -3,7 +3,7 @@
 //! Fresnel; f = F·D·G/(4 cosθi cosθr), so f·cosθi·cosθr = F·D·G/4. Optional Lambert term.
 
 use super::fresnel::Fresnel;
-use super::{half_vector, Half};
+use super::Half;
 use glam::DVec3;
 use std::f64::consts::{FRAC_1_PI, PI};
 
@@ -28,28 +28,17 @@ impl RoughConductor {
         }
     }
 
-    /// f·cosθi·cosθr, sr⁻¹.
-    #[inline]
-    pub fn projected(&self, n: DVec3, l: DVec3, v: DVec3, ci: f64, cr: f64) -> f64 {
-        self.projected_fixed(n, &self.half(l, v), ci, cr)
-    }
-
     /// What the specular term needs that depends on the directions only, not on the face.
     #[inline]
     pub fn half(&self, l: DVec3, v: DVec3) -> Option<Half> {
         if self.ks == 0.0 {
             return None;
         }
-        let h = half_vector(l, v)?;
-        let cb = l.dot(h);
-        Some(Half {
-            h,
-            cos_b: cb,
-            fresnel: self.fresnel.reflectance(cb),
-        })
+        // cos_b ≥ 0 as Half clamps it: the Fresnel term clamps its argument the same way
+        Half::new(l, v, &self.fresnel)
     }
 
-    /// [`RoughConductor::projected`] with the face-independent part given.
+    /// f·cosθi·cosθr, sr⁻¹, given the face-independent part ([`RoughConductor::half`]).
     #[inline]
     pub fn projected_fixed(&self, n: DVec3, half: &Option<Half>, ci: f64, cr: f64) -> f64 {
         let diffuse = self.kd * FRAC_1_PI * ci * cr;

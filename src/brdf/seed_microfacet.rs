@@ -3,7 +3,7 @@
 //! f·cosθi·cosθr = k^D/π·cosθi·cosθr + k^M·C·V·F, which is finite at grazing angles.
 
 use super::fresnel::Fresnel;
-use super::{half_vector, Half};
+use super::Half;
 use glam::DVec3;
 use std::f64::consts::FRAC_1_PI;
 
@@ -30,28 +30,17 @@ impl SeedMicrofacet {
         }
     }
 
-    /// f·cosθi·cosθr, sr⁻¹; `ci`, `cr` > 0 are given by the caller.
-    #[inline]
-    pub fn projected(&self, n: DVec3, l: DVec3, v: DVec3, ci: f64, cr: f64) -> f64 {
-        self.projected_fixed(n, &self.half(l, v), ci, cr)
-    }
-
     /// What the specular term needs that depends on the directions only, not on the face.
     #[inline]
     pub fn half(&self, l: DVec3, v: DVec3) -> Option<Half> {
         if self.km == 0.0 {
             return None;
         }
-        let h = half_vector(l, v)?;
-        let cb = l.dot(h).max(0.0);
-        Some(Half {
-            h,
-            cos_b: cb,
-            fresnel: self.fresnel.reflectance(cb),
-        })
+        Half::new(l, v, &self.fresnel)
     }
 
-    /// [`SeedMicrofacet::projected`] with the face-independent part given.
+    /// f·cosθi·cosθr, sr⁻¹, given the face-independent part ([`SeedMicrofacet::half`]);
+    /// `ci`, `cr` > 0 are given by the caller.
     #[inline]
     pub fn projected_fixed(&self, n: DVec3, half: &Option<Half>, ci: f64, cr: f64) -> f64 {
         let diffuse = self.kd * FRAC_1_PI * ci * cr;

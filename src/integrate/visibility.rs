@@ -280,7 +280,6 @@ struct ExactScratch {
     /// One blocker polygon: projected vertex and height above the face's plane.
     clip_in: Vec<(DVec2, f64)>,
     shadow: Vec<DVec2>,
-    poly: Vec<DVec3>,
 }
 
 impl Cache {
@@ -610,8 +609,7 @@ impl Visibility {
         let shadows = |region: &mut Region,
                        k: usize,
                        x_in: &mut Vec<(DVec2, f64)>,
-                       shadow: &mut Vec<DVec2>,
-                       poly: &mut Vec<DVec3>|
+                       shadow: &mut Vec<DVec2>|
          -> Option<()> {
             let Some(d) = dirs[k] else { return Some(()) };
             let along = DVec2::new(d.dot(u), d.dot(w)) / n.dot(d);
@@ -623,11 +621,9 @@ impl Visibility {
                     &mut std::iter::once(&o.outline[..])
                 };
                 for p in polys {
-                    poly.clear();
-                    poly.extend_from_slice(p);
                     // project each vertex along d onto the plane; h is its height above it
                     x_in.clear();
-                    x_in.extend(poly.iter().map(|y| {
+                    x_in.extend(p.iter().map(|y| {
                         let h = n.dot(*y - c);
                         (plane(*y) - along * h, h)
                     }));
@@ -642,23 +638,17 @@ impl Visibility {
             }
             Some(())
         };
-        shadows(&mut x.lit, 0, &mut x.clip_in, &mut x.shadow, &mut x.poly)?;
+        shadows(&mut x.lit, 0, &mut x.clip_in, &mut x.shadow)?;
         let seen = x.lit.area();
         let a_earth = if dirs[2].is_some() {
             x.earthlit.clone_from(&x.lit);
-            shadows(
-                &mut x.earthlit,
-                2,
-                &mut x.clip_in,
-                &mut x.shadow,
-                &mut x.poly,
-            )?;
+            shadows(&mut x.earthlit, 2, &mut x.clip_in, &mut x.shadow)?;
             x.earthlit.area()
         } else {
             seen
         };
         let a_sun = if dirs[1].is_some() {
-            shadows(&mut x.lit, 1, &mut x.clip_in, &mut x.shadow, &mut x.poly)?;
+            shadows(&mut x.lit, 1, &mut x.clip_in, &mut x.shadow)?;
             x.lit.area()
         } else {
             seen

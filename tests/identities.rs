@@ -225,14 +225,20 @@ proptest! {
     }
 
     /// Range scaling: the observer k times farther in the same direction gives 1/k²
-    /// (the same faces, the same visibility). Rounding only.
+    /// (the same faces, the same visibility). Rounding, plus the clipper's geometric
+    /// tolerance: scaling the observer moves its unit direction by an ulp, and where a
+    /// shadow edge runs exactly along a face's edge (the shrunk cases put the Sun in the
+    /// trough's plane) the clipper leaves a sliver whose area (~1e-9 m² on a 1 m² wall,
+    /// its plane test being exact to 1e-9 of the object's radius) moves with that ulp.
+    /// So the budget is 1e-12 of the signal plus 1e-8 of the unshadowed signal.
     #[test]
     fn inverse_square_of_range(which in 0u8..3, k in 1e-3..1e3f64, sun in dir3(), obs in dir3(), earth in dir3()) {
         let base = object(which, 0.1, sun, obs, earth);
         let mut far = base.clone();
         far.epochs[0].observer *= k;
         let (a, b) = (irradiance(&base), irradiance(&far));
-        prop_assert!((b * k * k - a).abs() <= 1e-12 * a, "{a:e} vs {b:e} at k = {k}");
+        let budget = 1e-12 * a + 1e-8 * unshadowed(&base);
+        prop_assert!((b * k * k - a).abs() <= budget, "{a:e} vs {b:e} at k = {k}");
     }
 
     /// Mesh scaling by s gives s², and rotating the mesh with every vector changes

@@ -141,27 +141,41 @@ impl Region {
         self.next_pieces.clear();
         let mut k = 0;
         let mut live = self.pieces.len();
+        let before = live;
         while k < live {
             let pc = self.pieces[k];
             let (plo, phi) = (pc.lo, pc.hi);
-            let piece = &self.pts[pc.start as usize..pc.end as usize];
-            let apart = plo.x >= hi.x - eps
+            if plo.x >= hi.x - eps
                 || plo.y >= hi.y - eps
                 || phi.x <= lo.x + eps
                 || phi.y <= lo.y + eps
-                || self
-                    .edges
-                    .iter()
-                    .any(|&(a, m)| piece.iter().all(|p| m.dot(*p - a) <= eps))
-                || separated_by_own_edges(piece, (0..s.len()).map(vertex), eps);
-            if apart {
+            {
                 k += 1;
                 continue;
             }
-            let inside = self
-                .edges
-                .iter()
-                .all(|&(a, m)| piece.iter().all(|p| m.dot(*p - a) >= -eps));
+            let piece = &self.pts[pc.start as usize..pc.end as usize];
+            // One pass over the shadow's edges decides both: the piece is apart when it
+            // lies wholly outside one edge, inside the shadow when wholly inside all.
+            let mut apart = false;
+            let mut inside = true;
+            for &(a, m) in &self.edges {
+                let (lo_s, hi_s) =
+                    piece
+                        .iter()
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                            let v = m.dot(*p - a);
+                            (l.min(v), h.max(v))
+                        });
+                if hi_s <= eps {
+                    apart = true;
+                    break;
+                }
+                inside &= lo_s >= -eps;
+            }
+            if apart || separated_by_own_edges(piece, (0..s.len()).map(vertex), eps) {
+                k += 1;
+                continue;
+            }
             if inside {
                 // wholly in the shadow (a face under a larger blocker): no cuts needed
                 self.pieces.swap_remove(k);
@@ -194,6 +208,9 @@ impl Region {
                 return Err(TooComplex);
             }
         }
+        if live == before && self.next_pieces.is_empty() {
+            return Ok(()); // the shadow missed every piece: bounds unchanged
+        }
         self.pieces.append(&mut self.next_pieces);
         (self.lo, self.hi) = self.pieces.iter().fold(
             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
@@ -210,14 +227,9 @@ fn bounds(p: &[DVec2]) -> (DVec2, DVec2) {
     )
 }
 
-/// Distance of `p` to the left of the directed line a→b (negative: to the right), m.
-#[inline]
-fn side(a: DVec2, b: DVec2, p: DVec2) -> f64 {
-    let e = b - a;
-    e.perp_dot(p - a) / e.length()
-}
-
-/// Is all of `s` on the outer side of some edge of the counter-clockwise `piece`?
+/// Is all of `s` on the outer side of some edge of the counter-clockwise `piece` (within
+/// `eps` of its line, m)? The distance e⊥·(p − a)/|e| ≤ eps is tested as e⊥·(p − a) ≤
+/// eps·|e|: one square root per edge, not per point.
 fn separated_by_own_edges(
     piece: &[DVec2],
     s: impl Iterator<Item = DVec2> + Clone,
@@ -226,7 +238,9 @@ fn separated_by_own_edges(
     let n = piece.len();
     (0..n).any(|i| {
         let (a, b) = (piece[i], piece[(i + 1) % n]);
-        s.clone().all(|p| side(a, b, p) <= eps)
+        let e = b - a;
+        let limit = eps * e.length();
+        s.clone().all(|p| e.perp_dot(p - a) <= limit)
     })
 }
 

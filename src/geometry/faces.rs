@@ -48,17 +48,7 @@ impl Faces {
         let mut parent: Vec<u32> = (0..n as u32).collect();
         if merge {
             // Weld vertices by exact position so meshes with split vertices still merge.
-            let mut weld: HashMap<[u64; 3], u32> = HashMap::new();
-            let canon: Vec<u32> = mesh
-                .vertices
-                .iter()
-                .enumerate()
-                .map(|(i, v)| {
-                    *weld
-                        .entry([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
-                        .or_insert(i as u32)
-                })
-                .collect();
+            let canon = mesh.welded_ids();
             let mut edges: HashMap<(u32, u32), u32> = HashMap::with_capacity(n * 3 / 2);
             for (t, tri) in mesh.triangles.iter().enumerate() {
                 for k in 0..3 {

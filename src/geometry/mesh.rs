@@ -26,6 +26,21 @@ impl Mesh {
         ]
     }
 
+    /// For each vertex, the first vertex at exactly the same position: ids that let meshes
+    /// with split vertices (as OBJ exporters often write them) still share their edges.
+    pub fn welded_ids(&self) -> Vec<u32> {
+        let mut first = std::collections::HashMap::new();
+        self.vertices
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                *first
+                    .entry([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
+                    .or_insert(i as u32)
+            })
+            .collect()
+    }
+
     /// Twice-area vector (b−a)×(c−a) of triangle `i`: its direction is the outward normal.
     #[inline]
     pub fn area_vector(&self, i: usize) -> DVec3 {

@@ -23,6 +23,34 @@ pub fn twice_signed_area(p: &[DVec2]) -> f64 {
     s
 }
 
+/// The convex hull of `points`, counter-clockwise without collinear points, into `out`
+/// (Andrew's monotone chain); `order` is scratch.
+pub fn convex_hull(points: &[DVec2], order: &mut Vec<u32>, out: &mut Vec<DVec2>) {
+    order.clear();
+    order.extend(0..points.len() as u32);
+    order.sort_unstable_by(|&a, &b| {
+        let (p, q) = (points[a as usize], points[b as usize]);
+        p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
+    });
+    out.clear();
+    let turn = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+    for pass in 0..2 {
+        let start = out.len();
+        let mut push = |p: DVec2| {
+            while out.len() >= start + 2 && turn(out[out.len() - 2], out[out.len() - 1], p) <= 0.0 {
+                out.pop();
+            }
+            out.push(p);
+        };
+        if pass == 0 {
+            order.iter().for_each(|&i| push(points[i as usize]));
+        } else {
+            order.iter().rev().for_each(|&i| push(points[i as usize]));
+        }
+        out.pop(); // the chain's last point starts the other chain
+    }
+}
+
 /// The part of a plane (a face) still lit and seen, as disjoint convex pieces.
 #[derive(Debug, Default, Clone)]
 pub struct Region {
@@ -301,6 +329,26 @@ mod tests {
         r.reset(1.0);
         r.add_convex(&square(0.0, 0.0, 1.0));
         r
+    }
+
+    #[test]
+    fn convex_hull_of_a_square_with_inner_and_edge_points() {
+        let pts: Vec<DVec2> = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (0.5, 0.0),
+            (1.0, 1.0),
+            (0.3, 0.4),
+            (0.0, 1.0),
+            (0.5, 1.0),
+        ]
+        .iter()
+        .map(|&(x, y)| DVec2::new(x, y))
+        .collect();
+        let (mut order, mut hull) = (Vec::new(), Vec::new());
+        convex_hull(&pts, &mut order, &mut hull);
+        assert_eq!(hull.len(), 4, "{hull:?}");
+        assert!((twice_signed_area(&hull) - 2.0).abs() < 1e-15);
     }
 
     #[test]

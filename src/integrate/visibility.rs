@@ -15,7 +15,11 @@
 //! then **clipped**: each possible blocker face, cut to the part in front of the face's
 //! plane, is projected along the direction onto that plane (a convex polygon) and
 //! subtracted from the face ([`crate::geometry::polygon::Region`]). That area is exact —
-//! no rays, no tolerance — and costs a few polygon splits per blocker.
+//! no rays, no tolerance — and costs a few polygon splits per blocker. A convex part of
+//! the mesh (a box, a dish: [`crate::geometry::convex::ConvexPart`]) wholly in front of
+//! the face is subtracted as one polygon, the hull of its projected vertices, instead of
+//! face by face: a finely meshed dish over the bus would otherwise cut the bus's top into
+//! hundreds of pieces.
 //!
 //! Faces nearly edge-on to a direction (the projection stretches without bound) or cut
 //! into too many pieces are **sampled** with rays instead, refining each triangle
@@ -27,7 +31,8 @@
 //! box-wing's dish, checked against f64 intersection).
 
 use crate::geometry::bvh::Occluder;
-use crate::geometry::polygon::Region;
+use crate::geometry::convex::{convex_parts, ConvexPart};
+use crate::geometry::polygon::{convex_hull, Region};
 use crate::geometry::Faces;
 use crate::scene::Scene;
 use glam::{DVec2, DVec3};
@@ -72,8 +77,15 @@ struct FaceGeom {
     outline: Vec<DVec3>,
     /// Distinct vertices of the face, for exact half-space tests.
     vertices: Vec<DVec3>,
+    /// The convex part ([`Visibility::parts`]) the face belongs to, or `NO_PART`.
+    part: u32,
+    /// Convex parts wholly in front of the face's front side, and of its back side: their
+    /// shadows on it are one hull each.
+    parts_ahead: [Vec<u32>; 2],
     patch: u32,
 }
+
+const NO_PART: u32 = u32::MAX;
 
 /// A spatial group of consecutive faces.
 struct Patch {
@@ -108,6 +120,9 @@ pub struct Visibility {
     clip: bool,
     /// Cell size of the per-epoch face grids, m: the median face diameter.
     grid_cell: f64,
+    /// Connected convex pieces of the mesh (boxes, dishes): each casts its shadow on a
+    /// face wholly behind it as the hull of its projected vertices.
+    parts: Vec<ConvexPart>,
 }
 
 /// Per-thread cache of patch-level results, valid within one epoch.
@@ -316,9 +331,20 @@ struct ExactScratch {
     lit: Region,
     /// Seen and earthlit part.
     earthlit: Region,
+    shadows: ShadowBuffers,
+}
+
+/// Buffers for casting one direction's shadows.
+#[derive(Default)]
+struct ShadowBuffers {
     /// One blocker polygon: projected vertex and height above the face's plane.
     clip_in: Vec<(DVec2, f64)>,
     shadow: Vec<DVec2>,
+    /// A convex part's projected vertices, and the hull's sort order.
+    part_points: Vec<DVec2>,
+    hull_order: Vec<u32>,
+    /// Per blocker of the current direction: its shadow already cut with its part's.
+    done: Vec<bool>,
 }
 
 impl Cache {
@@ -388,6 +414,8 @@ impl Visibility {
                     },
                     pieces,
                     outline,
+                    part: NO_PART,
+                    parts_ahead: Default::default(),
                     patch: (i / per_patch) as u32,
                 }
             })
@@ -423,6 +451,47 @@ impl Visibility {
                 g.vertices = Vec::new();
             }
         }
+        let parts = if mode == VisibilityMode::Adaptive && scene.clip_shadows {
+            convex_parts(mesh, faces, tol)
+        } else {
+            Vec::new()
+        };
+        for (k, part) in parts.iter().enumerate() {
+            for &f in &part.faces {
+                geoms[f as usize].part = k as u32;
+            }
+        }
+        let ahead: Vec<[Vec<u32>; 2]> = geoms
+            .par_iter()
+            .map(|g| {
+                let mut ahead: [Vec<u32>; 2] = Default::default();
+                for (k, part) in parts.iter().enumerate() {
+                    if g.part == k as u32 {
+                        continue;
+                    }
+                    // heights of the part's vertices above the face's plane; stop as soon
+                    // as the part is known to reach both sides
+                    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                    for v in &part.vertices {
+                        let h = g.normal.dot(*v - g.centroid);
+                        lo = lo.min(h);
+                        hi = hi.max(h);
+                        if lo <= tol && hi >= -tol {
+                            break;
+                        }
+                    }
+                    if lo > tol {
+                        ahead[0].push(k as u32);
+                    } else if hi < -tol {
+                        ahead[1].push(k as u32);
+                    }
+                }
+                ahead
+            })
+            .collect();
+        for (g, a) in geoms.iter_mut().zip(ahead) {
+            g.parts_ahead = a;
+        }
         Visibility {
             mode,
             occluder,
@@ -431,6 +500,7 @@ impl Visibility {
             candidates,
             tol,
             clip: scene.clip_shadows,
+            parts,
             grid_cell: {
                 let mut d: Vec<f64> = faces.faces.iter().map(|f| 2.0 * f.radius).collect();
                 d.sort_by(f64::total_cmp);
@@ -657,26 +727,52 @@ impl Visibility {
             DVec2::new(r.dot(u), r.dot(w))
         };
         x.lit.reset(f.radius);
+        let poly = &mut x.shadows.shadow;
         if f.outline.is_empty() {
             for t in &f.pieces {
-                x.shadow.clear();
-                x.shadow.extend(t.iter().map(|p| plane(*p)));
-                x.lit.add_convex(&x.shadow);
+                poly.clear();
+                poly.extend(t.iter().map(|p| plane(*p)));
+                x.lit.add_convex(poly);
             }
         } else {
-            x.shadow.clear();
-            x.shadow.extend(f.outline.iter().map(|p| plane(*p)));
-            x.lit.add_convex(&x.shadow);
+            poly.clear();
+            poly.extend(f.outline.iter().map(|p| plane(*p)));
+            x.lit.add_convex(poly);
         }
         // view first: both the sunlit and the earthlit parts must be seen
-        let shadows = |region: &mut Region,
-                       k: usize,
-                       x_in: &mut Vec<(DVec2, f64)>,
-                       shadow: &mut Vec<DVec2>|
-         -> Option<()> {
+        let ahead = &f.parts_ahead[usize::from(n.dot(f.normal) < 0.0)];
+        let shadows = |region: &mut Region, k: usize, x: &mut ShadowBuffers| -> Option<()> {
             let Some(d) = dirs[k] else { return Some(()) };
             let along = DVec2::new(d.dot(u), d.dot(w)) / n.dot(d);
-            for b in &blockers[k] {
+            let project = |y: DVec3| {
+                let h = n.dot(y - c);
+                (plane(y) - along * h, h)
+            };
+            x.done.clear();
+            x.done.resize(blockers[k].len(), false);
+            // A convex part wholly in front of the face with several faces among the
+            // blockers: its shadow is the hull of its projected vertices, one cut for all.
+            for &part in ahead {
+                let of_part = blockers[k]
+                    .iter()
+                    .filter(|b| self.faces[b.face as usize].part == part)
+                    .count();
+                if of_part < 2 {
+                    continue;
+                }
+                let vertices = &self.parts[part as usize].vertices;
+                x.part_points.clear();
+                x.part_points.extend(vertices.iter().map(|y| project(*y).0));
+                convex_hull(&x.part_points, &mut x.hull_order, &mut x.shadow);
+                region.subtract_convex(&x.shadow, MAX_PIECES).ok()?;
+                for (done, b) in x.done.iter_mut().zip(&blockers[k]) {
+                    *done |= self.faces[b.face as usize].part == part;
+                }
+                if region.is_empty() {
+                    return Some(());
+                }
+            }
+            for (b, _) in blockers[k].iter().zip(&x.done).filter(|(_, &done)| !done) {
                 let o = &self.faces[b.face as usize];
                 let polys: &mut dyn Iterator<Item = &[DVec3]> = if o.outline.is_empty() {
                     &mut o.pieces.iter().map(|t| &t[..])
@@ -685,14 +781,11 @@ impl Visibility {
                 };
                 for p in polys {
                     // project each vertex along d onto the plane; h is its height above it
-                    x_in.clear();
-                    x_in.extend(p.iter().map(|y| {
-                        let h = n.dot(*y - c);
-                        (plane(*y) - along * h, h)
-                    }));
-                    clip_above(x_in, self.tol, shadow);
-                    if shadow.len() >= 3 {
-                        region.subtract_convex(shadow, MAX_PIECES).ok()?;
+                    x.clip_in.clear();
+                    x.clip_in.extend(p.iter().map(|y| project(*y)));
+                    clip_above(&x.clip_in, self.tol, &mut x.shadow);
+                    if x.shadow.len() >= 3 {
+                        region.subtract_convex(&x.shadow, MAX_PIECES).ok()?;
                         if region.is_empty() {
                             return Some(());
                         }
@@ -701,17 +794,17 @@ impl Visibility {
             }
             Some(())
         };
-        shadows(&mut x.lit, 0, &mut x.clip_in, &mut x.shadow)?;
+        shadows(&mut x.lit, 0, &mut x.shadows)?;
         let seen = x.lit.area();
         let a_earth = if dirs[2].is_some() {
             x.earthlit.clone_from(&x.lit);
-            shadows(&mut x.earthlit, 2, &mut x.clip_in, &mut x.shadow)?;
+            shadows(&mut x.earthlit, 2, &mut x.shadows)?;
             x.earthlit.area()
         } else {
             seen
         };
         let a_sun = if dirs[1].is_some() {
-            shadows(&mut x.lit, 1, &mut x.clip_in, &mut x.shadow)?;
+            shadows(&mut x.lit, 1, &mut x.shadows)?;
             x.lit.area()
         } else {
             seen
@@ -1122,6 +1215,8 @@ mod tests {
             pieces: Vec::new(),
             outline: Vec::new(),
             vertices: Vec::new(),
+            part: NO_PART,
+            parts_ahead: Default::default(),
             patch: 0,
         }
     }

@@ -396,3 +396,62 @@ fn a_finely_meshed_sphere_shadows_a_plate_as_the_sampler_finds() {
         "clipped {clipped:e} vs sampled {sampled:e}"
     );
 }
+
+/// A cup: a 2 m × 2 m floor and four 1 m walls, open at the top, every normal pointing
+/// in (Lambert, albedo 0.5). From inside, only what looks out through the rim is lit or
+/// seen: a convex cap's faces are clipped by its lid in one step. With the Sun along
+/// (1, 0, 2) the floor is lit for x ≤ 2 − 1·(1/2) = 1.5 m; seen straight down all of it
+/// is seen, so 1.5 × 2 = 3 m² are lit and seen; seen along (−0.3, 0, 1) only x ≥ 0.3 m
+/// is, leaving 1.2 × 2 = 2.4 m². No wall is both lit and seen in either case (each is
+/// edge-on to, or faces away from, one of the two). Bound 1e-12: rounding.
+#[test]
+fn a_cup_is_lit_and_seen_only_through_its_rim() {
+    let (w, h) = (2.0, 1.0);
+    let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+    let mut cup = Mesh::default();
+    push_quad(
+        &mut cup,
+        [p(0., 0., 0.), p(w, 0., 0.), p(w, w, 0.), p(0., w, 0.)],
+        0,
+    );
+    push_quad(
+        &mut cup,
+        [p(0., 0., 0.), p(0., w, 0.), p(0., w, h), p(0., 0., h)],
+        0,
+    );
+    push_quad(
+        &mut cup,
+        [p(w, 0., 0.), p(w, 0., h), p(w, w, h), p(w, w, 0.)],
+        0,
+    );
+    push_quad(
+        &mut cup,
+        [p(0., 0., 0.), p(0., 0., h), p(w, 0., h), p(w, 0., 0.)],
+        0,
+    );
+    push_quad(
+        &mut cup,
+        [p(0., w, 0.), p(w, w, 0.), p(w, w, h), p(0., w, h)],
+        0,
+    );
+    let sun = DVec3::new(1.0, 0.0, 2.0).normalize();
+    for (view, expected) in [
+        (DVec3::Z, 3.0),
+        (DVec3::new(-0.3, 0.0, 1.0).normalize(), 2.4),
+    ] {
+        let sc = scene(
+            cup.clone(),
+            vec![lambert("cup", 0.5, false)],
+            vec![epoch(sun, view * RANGE)],
+        );
+        let r = glint::simulate(&sc);
+        assert_sane(&r);
+        let area = r.epochs[0].lit_visible_area_m2;
+        assert!(
+            (area - expected).abs() < 1e-12 * 4.0,
+            "view {view}: lit and seen {area} m², expected {expected}"
+        );
+        let e = es_default() * 0.5 / PI * expected * sun.z * view.z / (RANGE * RANGE);
+        assert!(rel(r.epochs[0].irradiance_w_m2, e) < 1e-12, "view {view}");
+    }
+}

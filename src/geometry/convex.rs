@@ -106,6 +106,60 @@ pub struct ConvexPart {
     pub vertices: Vec<glam::DVec3>,
     /// Indices of the faces (into [`Faces`]) that make up the part.
     pub faces: Vec<u32>,
+    /// Per face (as in `faces`): does the part lie in front of its front side (a dish's
+    /// concave side) rather than behind it (a box's outside)?
+    pub hull_ahead: Vec<bool>,
+    /// The open side, when it is one convex polygon.
+    pub lid: Option<Lid>,
+}
+
+/// The open side of a convex cap: a convex polygon. A ray from a face of the cap into the
+/// cap's hull leaves the hull once, and passes the cap unblocked exactly when it leaves
+/// through the lid: a dish's faces see out only through its rim.
+#[derive(Debug, Clone)]
+pub struct Lid {
+    /// Its corners in order, m.
+    pub corners: Vec<glam::DVec3>,
+    /// Unit normal pointing out of the hull.
+    pub normal: glam::DVec3,
+    /// In-plane axes (u × w = normal) and origin of `outline`, m.
+    pub u: glam::DVec3,
+    pub w: glam::DVec3,
+    pub origin: glam::DVec3,
+    /// The corners in (u, w) coordinates, counter-clockwise, m.
+    pub outline: Vec<glam::DVec2>,
+    /// A point inside the outline (the corners' mean), the radius of the circle about it
+    /// that the outline contains, and of the one that contains the outline, m: most
+    /// points are decided by these two without visiting the edges.
+    centre: glam::DVec2,
+    inner: f64,
+    outer: f64,
+}
+
+impl Lid {
+    /// Does the ray from `p` along unit `d` leave through the lid (within `tol`, m)? `p`
+    /// must lie on the hull's side of the lid's plane.
+    pub fn passes(&self, p: glam::DVec3, d: glam::DVec3, tol: f64) -> bool {
+        let dn = d.dot(self.normal);
+        if dn <= 0.0 {
+            return false;
+        }
+        let hit = p + d * (self.normal.dot(self.origin - p) / dn) - self.origin;
+        let q = glam::DVec2::new(hit.dot(self.u), hit.dot(self.w));
+        let r = q.distance(self.centre);
+        if r <= self.inner {
+            return true;
+        }
+        if r > self.outer + tol {
+            return false;
+        }
+        let n = self.outline.len();
+        (0..n).all(|i| {
+            let (a, b) = (self.outline[i], self.outline[(i + 1) % n]);
+            let e = b - a;
+            e.perp_dot(q - a) >= -tol * e.length()
+        })
+    }
 }
 
 /// Fewest faces for a part to be worth treating whole (below, the faces' own shadows are
@@ -192,7 +246,8 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             if work > PART_WORK_LIMIT {
                 return None;
             }
-            let supporting = fs.iter().all(|&f| {
+            let mut hull_ahead = Vec::with_capacity(fs.len());
+            for &f in &fs {
                 let face = &faces.faces[f as usize];
                 let (mut ahead, mut behind) = (false, false);
                 for v in &vertices {
@@ -200,11 +255,12 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
                     ahead |= h > tol;
                     behind |= h < -tol;
                 }
-                !(ahead && behind)
-            });
-            if !supporting {
-                return None;
+                if ahead && behind {
+                    return None; // not on its hull's boundary
+                }
+                hull_ahead.push(ahead);
             }
+            let mut lid = None;
             if let Some(open) = open.get(&root) {
                 // the open side must be flat: Newell's normal of its edges, then distances
                 let p = mesh.vertices[open[0].0 as usize];
@@ -221,15 +277,98 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
                 if !flat {
                     return None;
                 }
+                let centroid = vertices.iter().sum::<glam::DVec3>() / vertices.len() as f64;
+                lid = lid_of(open, mesh, centroid - p, n.normalize(), tol);
             }
             Some(ConvexPart {
                 vertices,
                 faces: fs,
+                hull_ahead,
+                lid,
             })
         })
         .collect();
     parts.sort_by_key(|p| p.faces[0]);
     parts
+}
+
+/// The lid of a cap whose open edges (directed, welded ids) lie in the plane of unit
+/// normal `n`: `None` unless they chain into one convex loop. `inside` points from the
+/// plane into the hull.
+fn lid_of(
+    open: &[(u32, u32)],
+    mesh: &Mesh,
+    inside: glam::DVec3,
+    n: glam::DVec3,
+    tol: f64,
+) -> Option<Lid> {
+    let mut next: Vec<(u32, u32)> = open.to_vec();
+    next.sort_unstable();
+    if next.windows(2).any(|w| w[0].0 == w[1].0) {
+        return None; // the boundary passes a vertex twice
+    }
+    let mut ring = vec![next[0].0];
+    loop {
+        let last = *ring.last().expect("not empty");
+        let k = next.binary_search_by_key(&last, |e| e.0).ok()?;
+        if next[k].1 == ring[0] {
+            break;
+        }
+        ring.push(next[k].1);
+        if ring.len() > next.len() {
+            return None;
+        }
+    }
+    if ring.len() != next.len() {
+        return None; // more than one loop
+    }
+    let normal = if n.dot(inside) > 0.0 { -n } else { n };
+    let (u, w) = crate::radiometry::earth::orthonormal_basis(normal);
+    let corners: Vec<glam::DVec3> = ring.iter().map(|&v| mesh.vertices[v as usize]).collect();
+    let origin = corners[0];
+    let mut outline: Vec<glam::DVec2> = corners
+        .iter()
+        .map(|c| glam::DVec2::new((*c - origin).dot(u), (*c - origin).dot(w)))
+        .collect();
+    if super::polygon::twice_signed_area(&outline) < 0.0 {
+        outline.reverse();
+    }
+    // convex: no corner turns clockwise by more than `tol`, and the turns add up to one
+    // full turn (a star polygon turns one way everywhere but winds more than once)
+    let m = outline.len();
+    let mut turning = 0.0;
+    let convex = (0..m).all(|i| {
+        let (a, b, c) = (outline[i], outline[(i + 1) % m], outline[(i + 2) % m]);
+        let (e1, e2) = (b - a, c - b);
+        turning += e1.perp_dot(e2).atan2(e1.dot(e2));
+        e1.perp_dot(e2) >= -tol * e1.length().max(e2.length())
+    });
+    if !(convex && (turning - std::f64::consts::TAU).abs() < 1e-6) {
+        return None;
+    }
+    let centre = outline.iter().sum::<glam::DVec2>() / m as f64;
+    let inner = (0..m)
+        .map(|i| {
+            let (a, b) = (outline[i], outline[(i + 1) % m]);
+            (b - a).perp_dot(centre - a) / (b - a).length().max(f64::MIN_POSITIVE)
+        })
+        .fold(f64::INFINITY, f64::min);
+    let outer = outline
+        .iter()
+        .map(|p| p.distance(centre))
+        .fold(0.0, f64::max);
+    Some(Lid {
+        corners,
+        normal,
+        u,
+        w,
+        origin,
+        outline,
+        centre,
+        // shrunk by a hair for rounding: a point this close is decided edge by edge
+        inner: inner * (1.0 - 1e-9),
+        outer,
+    })
 }
 
 #[cfg(test)]
@@ -248,6 +387,31 @@ mod tests {
         sizes.sort_unstable();
         // bus, two booms, mast (6 faces each); dish: 24 fan triangles + 4 × 24 quads
         assert_eq!(sizes, vec![6, 6, 6, 6, 120]);
+        let parts = convex_parts(&mesh, &faces, 1e-9);
+        let dish = parts.iter().find(|p| p.faces.len() == 120).unwrap();
+        let lid = dish.lid.as_ref().expect("the dish's rim is its lid");
+        assert_eq!(lid.corners.len(), 24);
+        assert!(
+            (lid.normal - glam::DVec3::Z).length() < 1e-12,
+            "{}",
+            lid.normal
+        );
+        assert!(
+            dish.hull_ahead.iter().all(|&a| a),
+            "the dish opens towards its normals"
+        );
+        // a ray from the dish's centre straight up leaves through the rim; one at 80°
+        // from the axis hits the dish's side
+        let centre = glam::DVec3::new(0.0, 0.0, 1.2);
+        assert!(lid.passes(centre, glam::DVec3::Z, 1e-9));
+        let low = glam::DVec3::new(80f64.to_radians().sin(), 0.0, 80f64.to_radians().cos());
+        assert!(!lid.passes(centre, low, 1e-9));
+        for p in parts.iter().filter(|p| p.faces.len() == 6) {
+            assert!(
+                p.lid.is_none() && p.hull_ahead.iter().all(|&a| !a),
+                "boxes are closed"
+            );
+        }
     }
 
     #[test]

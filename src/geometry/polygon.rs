@@ -136,6 +136,71 @@ impl Region {
             .sum()
     }
 
+    /// Keeps only the part inside the convex polygon `s` (either orientation): each piece
+    /// is clipped to it, so pieces stay convex and their number never grows.
+    pub fn intersect_convex(&mut self, s: &[DVec2]) {
+        let a = twice_signed_area(s);
+        if s.len() < 3 || a.abs() <= self.eps * self.eps {
+            self.pieces.clear();
+            return;
+        }
+        let eps = self.eps;
+        let ccw = a > 0.0;
+        let vertex = |i: usize| if ccw { s[i] } else { s[s.len() - 1 - i] };
+        self.edges.clear();
+        for i in 0..s.len() {
+            let (p, q) = (vertex(i), vertex((i + 1) % s.len()));
+            let e = q - p;
+            let len = e.length();
+            if len > eps {
+                self.edges.push((p, e.perp() / len));
+            }
+        }
+        let mut k = 0;
+        while k < self.pieces.len() {
+            let pc = self.pieces[k];
+            let piece = &self.pts[pc.start as usize..pc.end as usize];
+            if self
+                .edges
+                .iter()
+                .all(|&(a, m)| piece.iter().all(|p| m.dot(*p - a) >= -eps))
+            {
+                k += 1; // wholly inside: kept as it is
+                continue;
+            }
+            self.cur.clear();
+            self.cur.extend_from_slice(piece);
+            for &(a, m) in &self.edges {
+                if self.cur.iter().all(|p| m.dot(*p - a) >= -eps) {
+                    continue; // inside this edge: nothing to cut (most edges of a big polygon)
+                }
+                split(&self.cur, a, m, eps, &mut self.inside, &mut self.outside);
+                std::mem::swap(&mut self.cur, &mut self.inside);
+                if twice_signed_area(&self.cur) <= eps * eps {
+                    break;
+                }
+            }
+            if twice_signed_area(&self.cur) > eps * eps {
+                let start = self.pts.len() as u32;
+                self.pts.extend_from_slice(&self.cur);
+                let (lo, hi) = bounds(&self.cur);
+                self.pieces[k] = Piece {
+                    start,
+                    end: self.pts.len() as u32,
+                    lo,
+                    hi,
+                };
+                k += 1;
+            } else {
+                self.pieces.swap_remove(k);
+            }
+        }
+        (self.lo, self.hi) = self.pieces.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), p| (lo.min(p.lo), hi.max(p.hi)),
+        );
+    }
+
     /// Removes a convex polygon `s` (either orientation). Fails when the result would
     /// need more than `max_pieces` pieces; the region is then partly cut and of no use.
     pub fn subtract_convex(&mut self, s: &[DVec2], max_pieces: usize) -> Result<(), TooComplex> {
@@ -329,6 +394,32 @@ mod tests {
         r.reset(1.0);
         r.add_convex(&square(0.0, 0.0, 1.0));
         r
+    }
+
+    #[test]
+    fn intersecting_keeps_the_overlap_and_never_splits() {
+        let mut r = Region::default();
+        r.reset(1.0);
+        r.add_convex(&square(0.0, 0.0, 1.0));
+        r.add_convex(&square(1.0, 0.0, 1.0));
+        // a diamond over both squares' shared edge
+        let diamond = [
+            DVec2::new(1.0, -0.5),
+            DVec2::new(1.5, 0.5),
+            DVec2::new(1.0, 1.5),
+            DVec2::new(0.5, 0.5),
+        ];
+        r.intersect_convex(&diamond);
+        assert_eq!(r.len(), 2);
+        // the diamond (area 1) pokes out below y = 0 and above y = 1 by triangles of
+        // base 0.5 and height 0.5 (area 0.125 each)
+        assert!(
+            (r.area() - (1.0 - 2.0 * 0.125)).abs() < 1e-15,
+            "{}",
+            r.area()
+        );
+        r.intersect_convex(&square(5.0, 5.0, 1.0));
+        assert!(r.is_empty());
     }
 
     #[test]

@@ -19,7 +19,9 @@
 //! the mesh (a box, a dish: [`crate::geometry::convex::ConvexPart`]) wholly in front of
 //! the face is subtracted as one polygon, the hull of its projected vertices, instead of
 //! face by face: a finely meshed dish over the bus would otherwise cut the bus's top into
-//! hundreds of pieces.
+//! hundreds of pieces. A face of a convex cap, on its inner side, is instead clipped to
+//! the cap's lid projected back onto it (what of it looks out through the rim), and the
+//! cap's own faces are not collected as blockers at all.
 //!
 //! Faces nearly edge-on to a direction (the projection stretches without bound) or cut
 //! into too many pieces are **sampled** with rays instead, refining each triangle
@@ -82,6 +84,9 @@ struct FaceGeom {
     /// Convex parts wholly in front of the face's front side, and of its back side: their
     /// shadows on it are one hull each.
     parts_ahead: [Vec<u32>; 2],
+    /// Per side (front, back): the face belongs to a cap with a lid and that side faces
+    /// into the cap.
+    lid_side: [bool; 2],
     patch: u32,
 }
 
@@ -416,6 +421,7 @@ impl Visibility {
                     outline,
                     part: NO_PART,
                     parts_ahead: Default::default(),
+                    lid_side: [false; 2],
                     patch: (i / per_patch) as u32,
                 }
             })
@@ -457,8 +463,12 @@ impl Visibility {
             Vec::new()
         };
         for (k, part) in parts.iter().enumerate() {
-            for &f in &part.faces {
-                geoms[f as usize].part = k as u32;
+            for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
+                let g = &mut geoms[f as usize];
+                g.part = k as u32;
+                if part.lid.is_some() {
+                    g.lid_side = [ahead, !ahead && g.two_sided];
+                }
             }
         }
         let ahead: Vec<[Vec<u32>; 2]> = geoms
@@ -520,30 +530,6 @@ impl Visibility {
             })
             .map(|&(p, _)| p)
             .collect()
-    }
-
-    /// Face-level: collects into `out` the faces of the flagged patches that may block
-    /// `face` (side normal `n`) along `d`.
-    fn face_blockers(
-        &self,
-        face: usize,
-        n: DVec3,
-        flagged: &[u32],
-        proj: &Projection,
-        out: &mut Vec<Blocker>,
-    ) {
-        let f = &self.faces[face];
-        let d = proj.dir.expect("projection built for this direction");
-        for &p in flagged {
-            // the patch test was for the receiver's whole patch: this face may be out of reach
-            let pp = &self.patches[p as usize];
-            if !reaches(f.centroid, f.radius, pp.centre, pp.radius, d) {
-                continue;
-            }
-            for g in pp.faces.clone() {
-                self.consider_blocker(face, n, g as usize, proj, out);
-            }
-        }
     }
 
     /// Face-level tests of face `g` as a blocker of `face` (side normal `n`) along `d`;
@@ -623,12 +609,62 @@ impl Visibility {
             }
             return (s.a_sun, s.a_earth, s.rays);
         }
-        // Patch- then face-level proofs; what survives are the possible blockers.
+        // A face of a convex cap, on the side facing into the cap: the cap's own faces
+        // block a ray from it unless it leaves through the lid, which one clip decides
+        // (`Lid`), so they are not collected one by one.
+        let own_lid = (f.lid_side[usize::from(side < 0.0)] && self.clip).then_some(f.part);
+        let lid_clips =
+            self.collect_blockers(cache, face, side, &directions, own_lid, &mut s.blockers);
+        let full_area: f64 = f.pieces.iter().map(area_of).sum();
+        if s.blockers.iter().all(Vec::is_empty) && lid_clips.iter().all(Option::is_none) {
+            return (full_area, full_area, 0);
+        }
+        if self.mode == VisibilityMode::Adaptive && self.clip {
+            if let Some((a_sun, a_earth)) = self.exact_area(
+                &mut cache.exact,
+                face,
+                n,
+                &directions,
+                &s.blockers,
+                &lid_clips,
+            ) {
+                return (a_sun, a_earth, 0);
+            }
+            if own_lid.is_some() {
+                // the sampler needs every blocker, the cap's own faces too
+                s.blockers.iter_mut().for_each(Vec::clear);
+                self.collect_blockers(cache, face, side, &directions, None, &mut s.blockers);
+            }
+        }
+        for piece in &f.pieces {
+            s.refine(*piece, None, area_of(piece), 0, self.tol);
+        }
+        (s.a_sun, s.a_earth, s.rays)
+    }
+}
+
+impl Visibility {
+    /// Patch- then face-level proofs; what survives are the possible blockers of `face`
+    /// (on side `side`) along each direction, into `out`. Faces of part `skip` (the cap
+    /// the face belongs to, when it faces into it) are left out; returned per direction
+    /// is that part where its lid may clip the face (some corner's ray misses the lid).
+    fn collect_blockers(
+        &self,
+        cache: &mut Cache,
+        face: usize,
+        side: f64,
+        directions: &[Option<DVec3>; 3],
+        skip: Option<u32>,
+        out: &mut [Vec<Blocker>; 3],
+    ) -> [Option<u32>; 3] {
+        let f = &self.faces[face];
+        let n = f.normal * side;
         let key = (f.patch, side > 0.0);
         if cache.key != Some(key) {
             cache.key = Some(key);
             cache.flagged = [None, None, None];
         }
+        let mut lid_clips = [None; 3];
         for (k, d) in directions.iter().enumerate() {
             let Some(d) = *d else { continue };
             let flagged = cache.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
@@ -639,11 +675,26 @@ impl Visibility {
             if count == 0 {
                 continue;
             }
+            if let Some(part) = skip {
+                let lid = self.parts[part as usize]
+                    .lid
+                    .as_ref()
+                    .expect("caps have lids");
+                if !f.vertices.iter().all(|v| lid.passes(*v, d, self.tol)) {
+                    lid_clips[k] = Some(part);
+                }
+            }
             let proj = &mut cache.projections[k];
             if proj.dir != Some(d) {
                 proj.build(&self.faces, d);
             }
             let proj = &cache.projections[k];
+            let out = &mut out[k];
+            let mut consider = |g: usize| {
+                if skip.is_none() || self.faces[g].part != f.part {
+                    self.consider_blocker(face, n, g, proj, out)
+                }
+            };
             if count > GRID_MIN_FACES {
                 // many faces to test (a finely meshed curved part): ask the epoch's grid of
                 // faces seen along d for those whose shadow can fall on this one
@@ -651,30 +702,22 @@ impl Visibility {
                 if grid.dir != Some(d) {
                     grid.build(proj, self.grid_cell);
                 }
-                let out = &mut s.blockers[k];
                 let at = &proj.at[face];
                 grid.query(DVec2::new(at[0], at[1]), at[3], &mut cache.stamp, |g| {
-                    self.consider_blocker(face, n, g as usize, proj, out)
+                    consider(g as usize)
                 });
             } else {
-                self.face_blockers(face, n, flagged, proj, &mut s.blockers[k]);
+                for &p in flagged.iter() {
+                    // the patch test was for the receiver's whole patch: this face may be
+                    // out of reach
+                    let pp = &self.patches[p as usize];
+                    if reaches(f.centroid, f.radius, pp.centre, pp.radius, d) {
+                        pp.faces.clone().for_each(|g| consider(g as usize));
+                    }
+                }
             }
         }
-        let full_area: f64 = f.pieces.iter().map(area_of).sum();
-        if s.blockers.iter().all(Vec::is_empty) {
-            return (full_area, full_area, 0);
-        }
-        if self.mode == VisibilityMode::Adaptive && self.clip {
-            if let Some((a_sun, a_earth)) =
-                self.exact_area(&mut cache.exact, face, n, &directions, &s.blockers)
-            {
-                return (a_sun, a_earth, 0);
-            }
-        }
-        for piece in &f.pieces {
-            s.refine(*piece, None, area_of(piece), 0, self.tol);
-        }
-        (s.a_sun, s.a_earth, s.rays)
+        lid_clips
     }
 }
 
@@ -700,6 +743,7 @@ impl Visibility {
         n: DVec3,
         dirs: &[Option<DVec3>; 3],
         blockers: &[Vec<Blocker>; 3],
+        lid_clips: &[Option<u32>; 3],
     ) -> Option<(f64, f64)> {
         // A direction at or below the face's horizon still lights it through the upper
         // part of the Sun's disk: its shadows are those of a direction just above the
@@ -748,6 +792,19 @@ impl Visibility {
                 let h = n.dot(y - c);
                 (plane(y) - along * h, h)
             };
+            if let Some(part) = lid_clips[k] {
+                // what of the face sees out of its own cap: the lid, projected back
+                let lid = self.parts[part as usize]
+                    .lid
+                    .as_ref()
+                    .expect("caps have lids");
+                x.shadow.clear();
+                x.shadow.extend(lid.corners.iter().map(|y| project(*y).0));
+                region.intersect_convex(&x.shadow);
+                if region.is_empty() {
+                    return Some(());
+                }
+            }
             x.done.clear();
             x.done.resize(blockers[k].len(), false);
             // A convex part wholly in front of the face with several faces among the
@@ -1217,6 +1274,7 @@ mod tests {
             vertices: Vec::new(),
             part: NO_PART,
             parts_ahead: Default::default(),
+            lid_side: [false; 2],
             patch: 0,
         }
     }

@@ -128,6 +128,8 @@ pub struct Visibility {
     /// Connected convex pieces of the mesh (boxes, dishes): each casts its shadow on a
     /// face wholly behind it as the hull of its projected vertices.
     parts: Vec<ConvexPart>,
+    /// Each face's part (`NO_PART` for none), packed for the candidate search.
+    part_of: Vec<u32>,
 }
 
 /// Per-thread cache of patch-level results, valid within one epoch.
@@ -301,7 +303,16 @@ impl FaceGrid {
 
     /// Calls `found` once for every face whose disc may overlap the disc of radius `r`
     /// about `centre` (m) seen along the grid's direction.
-    fn query(&self, centre: DVec2, r: f64, stamp: &mut Stamp, mut found: impl FnMut(u32)) {
+    /// Faces of part `skip` are passed over (`part_of` gives each face's part).
+    fn query(
+        &self,
+        centre: DVec2,
+        r: f64,
+        skip: Option<u32>,
+        part_of: &[u32],
+        stamp: &mut Stamp,
+        mut found: impl FnMut(u32),
+    ) {
         if stamp.current == u32::MAX {
             stamp.marks.clear();
             stamp.current = 0;
@@ -318,6 +329,9 @@ impl FaceGrid {
             for x in x0..=x1 {
                 let c = y * self.nx + x;
                 for &g in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
+                    if skip.is_some_and(|p| part_of[g as usize] == p) {
+                        continue;
+                    }
                     let m = &mut stamp.marks[g as usize];
                     if *m != stamp.current {
                         *m = stamp.current;
@@ -372,7 +386,7 @@ const MAX_DEPTH: u32 = 16;
 const LEAF_SIZE_FACTOR: f64 = 8.0;
 /// Above this faces × vertices, patch relations come from bounding spheres (conservative)
 /// instead of every vertex.
-const EXACT_WORK: usize = 300_000_000;
+const EXACT_WORK: usize = 20_000_000;
 
 impl Visibility {
     /// Builds the BVH and the occluder candidates. `faces` should be in spatial order
@@ -457,11 +471,26 @@ impl Visibility {
                 g.vertices = Vec::new();
             }
         }
-        let parts = if mode == VisibilityMode::Adaptive && scene.clip_shadows {
+        let mut parts = if mode == VisibilityMode::Adaptive && scene.clip_shadows {
             convex_parts(mesh, faces, tol)
         } else {
             Vec::new()
         };
+        // A part's hull needs only its faces' corners: a subdivided side adds none.
+        for part in &mut parts {
+            let mut corners: Vec<DVec3> = part
+                .faces
+                .iter()
+                .flat_map(|&f| geoms[f as usize].vertices.iter().copied())
+                .collect();
+            corners.sort_by(|a, b| {
+                a.to_array()
+                    .partial_cmp(&b.to_array())
+                    .unwrap_or(std::cmp::Ordering::Equal)
+            });
+            corners.dedup();
+            part.vertices = corners;
+        }
         for (k, part) in parts.iter().enumerate() {
             for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
                 let g = &mut geoms[f as usize];
@@ -502,9 +531,11 @@ impl Visibility {
         for (g, a) in geoms.iter_mut().zip(ahead) {
             g.parts_ahead = a;
         }
+        let part_of = geoms.iter().map(|g| g.part).collect();
         Visibility {
             mode,
             occluder,
+            part_of,
             faces: geoms,
             patches,
             candidates,
@@ -691,7 +722,7 @@ impl Visibility {
             let proj = &cache.projections[k];
             let out = &mut out[k];
             let mut consider = |g: usize| {
-                if skip.is_none() || self.faces[g].part != f.part {
+                if skip.is_none() || self.part_of[g] != f.part {
                     self.consider_blocker(face, n, g, proj, out)
                 }
             };
@@ -703,7 +734,9 @@ impl Visibility {
                     grid.build(proj, self.grid_cell);
                 }
                 let at = &proj.at[face];
-                grid.query(DVec2::new(at[0], at[1]), at[3], &mut cache.stamp, |g| {
+                let stamp = &mut cache.stamp;
+                let centre = DVec2::new(at[0], at[1]);
+                grid.query(centre, at[3], skip, &self.part_of, stamp, |g| {
                     consider(g as usize)
                 });
             } else {
@@ -1353,7 +1386,9 @@ mod tests {
             for (i, f) in faces.iter().enumerate() {
                 let mut got = vec![0u32; faces.len()];
                 let at = DVec2::new(f.centroid.dot(proj.u), f.centroid.dot(proj.w));
-                grid.query(at, f.radius, &mut stamp, |g| got[g as usize] += 1);
+                grid.query(at, f.radius, None, &[], &mut stamp, |g| {
+                    got[g as usize] += 1
+                });
                 for (j, g) in faces.iter().enumerate() {
                     assert!(got[j] <= 1, "face {j} returned {} times", got[j]);
                     if j != i && reaches(f.centroid, f.radius, g.centroid, g.radius, d) {

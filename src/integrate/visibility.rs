@@ -141,8 +141,9 @@ pub struct Cache {
     exact: ExactScratch,
     /// Faces' bounding spheres seen along each direction (built on first use in an epoch).
     projections: [Projection; 3],
-    /// Faces binned across each direction (built on first use in an epoch).
-    grids: [FaceGrid; 3],
+    /// Faces binned across each direction (built on first use in an epoch): all, and all
+    /// but a cap's (for the cap's own faces, [`Visibility::collect_blockers`]).
+    grids: [[FaceGrid; 2]; 3],
     /// Per face: the query that last returned it (deduplicates multi-cell faces).
     stamp: Stamp,
 }
@@ -201,6 +202,8 @@ impl Projection {
 #[derive(Default)]
 struct FaceGrid {
     dir: Option<DVec3>,
+    /// The part whose faces were left out.
+    excluded: Option<u32>,
     lo: DVec2,
     cell: f64,
     nx: usize,
@@ -222,7 +225,9 @@ const GRID_MAX_CELLS: usize = 512;
 const GRID_MIN_FACES: usize = 400;
 
 impl FaceGrid {
-    fn build(&mut self, proj: &Projection, cell: f64) {
+    /// Bins the faces seen along the projection's direction, but those of part
+    /// `exclude` (by `part_of`).
+    fn build(&mut self, proj: &Projection, cell: f64, exclude: Option<u32>, part_of: &[u32]) {
         let faces = &proj.at;
         let at = |f: &[f64; 4]| DVec2::new(f[0], f[1]);
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
@@ -237,6 +242,7 @@ impl FaceGrid {
         let ny = (((hi.y - lo.y) / cell) as usize + 1).min(GRID_MAX_CELLS);
         *self = FaceGrid {
             dir: proj.dir,
+            excluded: exclude,
             lo,
             cell,
             nx,
@@ -252,6 +258,9 @@ impl FaceGrid {
         // counting sort of (cell, face) pairs
         for pass in 0..2 {
             for (i, f) in faces.iter().enumerate() {
+                if exclude.is_some_and(|p| part_of[i] == p) {
+                    continue;
+                }
                 if f[3] > 2.0 * cell {
                     if pass == 0 {
                         self.big.push(i as u32);
@@ -303,16 +312,7 @@ impl FaceGrid {
 
     /// Calls `found` once for every face whose disc may overlap the disc of radius `r`
     /// about `centre` (m) seen along the grid's direction.
-    /// Faces of part `skip` are passed over (`part_of` gives each face's part).
-    fn query(
-        &self,
-        centre: DVec2,
-        r: f64,
-        skip: Option<u32>,
-        part_of: &[u32],
-        stamp: &mut Stamp,
-        mut found: impl FnMut(u32),
-    ) {
+    fn query(&self, centre: DVec2, r: f64, stamp: &mut Stamp, mut found: impl FnMut(u32)) {
         if stamp.current == u32::MAX {
             stamp.marks.clear();
             stamp.current = 0;
@@ -329,9 +329,6 @@ impl FaceGrid {
             for x in x0..=x1 {
                 let c = y * self.nx + x;
                 for &g in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
-                    if skip.is_some_and(|p| part_of[g as usize] == p) {
-                        continue;
-                    }
                     let m = &mut stamp.marks[g as usize];
                     if *m != stamp.current {
                         *m = stamp.current;
@@ -371,7 +368,7 @@ impl Cache {
     pub fn reset(&mut self) {
         self.key = None;
         self.flagged = [None, None, None];
-        for g in &mut self.grids {
+        for g in self.grids.iter_mut().flatten() {
             g.dir = None;
         }
         for p in &mut self.projections {
@@ -729,16 +726,14 @@ impl Visibility {
             if count > GRID_MIN_FACES {
                 // many faces to test (a finely meshed curved part): ask the epoch's grid of
                 // faces seen along d for those whose shadow can fall on this one
-                let grid = &mut cache.grids[k];
-                if grid.dir != Some(d) {
-                    grid.build(proj, self.grid_cell);
+                // (a cap's own faces left out of the grid: there are many)
+                let grid = &mut cache.grids[k][usize::from(skip.is_some())];
+                if grid.dir != Some(d) || grid.excluded != skip {
+                    grid.build(proj, self.grid_cell, skip, &self.part_of);
                 }
                 let at = &proj.at[face];
-                let stamp = &mut cache.stamp;
                 let centre = DVec2::new(at[0], at[1]);
-                grid.query(centre, at[3], skip, &self.part_of, stamp, |g| {
-                    consider(g as usize)
-                });
+                grid.query(centre, at[3], &mut cache.stamp, |g| consider(g as usize));
             } else {
                 for &p in flagged.iter() {
                     // the patch test was for the receiver's whole patch: this face may be
@@ -1382,13 +1377,11 @@ mod tests {
         ] {
             let mut proj = Projection::default();
             proj.build(&faces, d);
-            grid.build(&proj, 0.1);
+            grid.build(&proj, 0.1, None, &[]);
             for (i, f) in faces.iter().enumerate() {
                 let mut got = vec![0u32; faces.len()];
                 let at = DVec2::new(f.centroid.dot(proj.u), f.centroid.dot(proj.w));
-                grid.query(at, f.radius, None, &[], &mut stamp, |g| {
-                    got[g as usize] += 1
-                });
+                grid.query(at, f.radius, &mut stamp, |g| got[g as usize] += 1);
                 for (j, g) in faces.iter().enumerate() {
                     assert!(got[j] <= 1, "face {j} returned {} times", got[j]);
                     if j != i && reaches(f.centroid, f.radius, g.centroid, g.radius, d) {

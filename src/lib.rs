@@ -16,4 +16,16 @@ pub mod scene;
 pub mod service;
 
 pub use integrate::{simulate, simulate_with, Cancelled, Progress};
+
+/// A small deterministic generator for unit tests: uniform numbers in [0, 1) from a
+/// 64-bit linear congruential sequence started at `seed`.
+#[cfg(test)]
+pub(crate) fn test_rng(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
 pub use scene::{Limits, Request, Response, Scene, ValidationError};

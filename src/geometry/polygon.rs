@@ -136,6 +136,22 @@ impl Region {
             .sum()
     }
 
+    /// Fills `edges` with the edges of convex `s` (counter-clockwise when `ccw`, else
+    /// clockwise): a point on each and its unit inward normal; edges shorter than `eps` are
+    /// left out.
+    fn set_edges(&mut self, s: &[DVec2], ccw: bool) {
+        let vertex = |i: usize| if ccw { s[i] } else { s[s.len() - 1 - i] };
+        self.edges.clear();
+        for i in 0..s.len() {
+            let (p, q) = (vertex(i), vertex((i + 1) % s.len()));
+            let e = q - p;
+            let len = e.length();
+            if len > self.eps {
+                self.edges.push((p, e.perp() / len));
+            }
+        }
+    }
+
     /// Keeps only the part inside the convex polygon `s` (either orientation): each piece
     /// is clipped to it, so pieces stay convex and their number never grows.
     pub fn intersect_convex(&mut self, s: &[DVec2]) {
@@ -145,17 +161,7 @@ impl Region {
             return;
         }
         let eps = self.eps;
-        let ccw = a > 0.0;
-        let vertex = |i: usize| if ccw { s[i] } else { s[s.len() - 1 - i] };
-        self.edges.clear();
-        for i in 0..s.len() {
-            let (p, q) = (vertex(i), vertex((i + 1) % s.len()));
-            let e = q - p;
-            let len = e.length();
-            if len > eps {
-                self.edges.push((p, e.perp() / len));
-            }
-        }
+        self.set_edges(s, a > 0.0);
         let mut k = 0;
         while k < self.pieces.len() {
             let pc = self.pieces[k];
@@ -217,17 +223,7 @@ impl Region {
         {
             return Ok(()); // misses every piece
         }
-        let ccw = a > 0.0;
-        let vertex = |i: usize| if ccw { s[i] } else { s[s.len() - 1 - i] };
-        self.edges.clear();
-        for i in 0..s.len() {
-            let (p, q) = (vertex(i), vertex((i + 1) % s.len()));
-            let e = q - p;
-            let len = e.length();
-            if len > eps {
-                self.edges.push((p, e.perp() / len));
-            }
-        }
+        self.set_edges(s, a > 0.0);
         // Cut pieces are swapped out of `pieces` (only the originals stay there during the
         // loop); their fragments collect in `next_pieces` and are appended at the end, so
         // pieces the shadow misses are never moved.
@@ -265,7 +261,7 @@ impl Region {
                 }
                 inside &= lo_s >= -eps;
             }
-            if apart || separated_by_own_edges(piece, (0..s.len()).map(vertex), eps) {
+            if apart || separated_by_own_edges(piece, s.iter().copied(), eps) {
                 k += 1;
                 continue;
             }
@@ -501,13 +497,7 @@ mod tests {
         // mostly cancel; 2e-3 is ~5 cells' worth per shadow edge.
         let mut r = unit_region();
         let mut shadows = Vec::new();
-        let mut seed = 12345u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::test_rng(12345);
         for _ in 0..12 {
             let c = DVec2::new(rnd(), rnd());
             let tri = [

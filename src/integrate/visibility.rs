@@ -1311,13 +1311,7 @@ mod tests {
     fn projected_reach_test_is_the_3d_one() {
         // Projection::reaches must decide exactly as reaches(); pairs are drawn so that
         // many sit near the boundary (distances comparable to the radii).
-        let mut seed = 11u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::test_rng(11);
         let faces: Vec<FaceGeom> = (0..400)
             .map(|_| {
                 let c = DVec3::new(rnd() * 4.0 - 2.0, rnd() * 4.0 - 2.0, rnd() * 4.0 - 2.0);
@@ -1354,13 +1348,7 @@ mod tests {
     fn face_grid_returns_every_face_whose_shadow_can_reach() {
         // Against brute force: every face g with reaches(f, g, d) must come back from the
         // query for f, once. Small and large faces (the big list), directions off the axes.
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = crate::test_rng(7);
         let faces: Vec<FaceGeom> = (0..600)
             .map(|i| {
                 let c = DVec3::new(rnd() * 10.0 - 5.0, rnd() * 4.0 - 2.0, rnd() * 3.0);

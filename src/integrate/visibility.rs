@@ -381,6 +381,8 @@ impl Cache {
 const MAX_DEPTH: u32 = 16;
 /// K in the leaf size K·budget/√A (see [`Visibility::visible_area`]).
 const LEAF_SIZE_FACTOR: f64 = 8.0;
+/// Above this faces × convex parts, parts shadow face by face, not as one hull.
+const PART_PAIRS_LIMIT: usize = 10_000_000;
 /// Above this faces × vertices, patch relations come from bounding spheres (conservative)
 /// instead of every vertex.
 const EXACT_WORK: usize = 20_000_000;
@@ -497,12 +499,42 @@ impl Visibility {
                 }
             }
         }
+        // Which parts lie wholly in front of each face: faces × parts work, and lists that
+        // grow with it, so a mesh of very many parts (a debris cloud) keeps tiles instead.
+        let spheres: Vec<(DVec3, f64)> = parts
+            .iter()
+            .map(|p| {
+                let (lo, hi) = p.vertices.iter().fold(
+                    (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+                );
+                let c = 0.5 * (lo + hi);
+                (
+                    c,
+                    p.vertices.iter().map(|v| v.distance(c)).fold(0.0, f64::max),
+                )
+            })
+            .collect();
+        let hull_shadows = geoms.len().saturating_mul(parts.len()) <= PART_PAIRS_LIMIT;
         let ahead: Vec<[Vec<u32>; 2]> = geoms
             .par_iter()
             .map(|g| {
                 let mut ahead: [Vec<u32>; 2] = Default::default();
+                if !hull_shadows {
+                    return ahead;
+                }
                 for (k, part) in parts.iter().enumerate() {
                     if g.part == k as u32 {
+                        continue;
+                    }
+                    let (c, r) = spheres[k];
+                    let h = g.normal.dot(c - g.centroid);
+                    if h - r > tol {
+                        ahead[0].push(k as u32); // its bounding sphere is: no vertex to test
+                        continue;
+                    }
+                    if h + r < -tol {
+                        ahead[1].push(k as u32);
                         continue;
                     }
                     // heights of the part's vertices above the face's plane; stop as soon

@@ -237,7 +237,14 @@ impl FaceGrid {
             hi = hi.max(p + f[3]);
         }
         let extent = (hi - lo).max_element().max(f64::MIN_POSITIVE);
-        let cell = cell.max(extent / GRID_MAX_CELLS as f64);
+        // about four cells per binned face at most: a grid of mostly empty cells costs
+        // its prefix sums at every build (twice per direction and epoch)
+        let binned = match exclude {
+            None => faces.len(),
+            Some(p) => part_of.iter().filter(|&&q| q != p).count(),
+        };
+        let side = ((2.0 * (binned as f64).sqrt()).ceil() as usize).clamp(1, GRID_MAX_CELLS);
+        let cell = cell.max(extent / side as f64);
         let nx = (((hi.x - lo.x) / cell) as usize + 1).min(GRID_MAX_CELLS);
         let ny = (((hi.y - lo.y) / cell) as usize + 1).min(GRID_MAX_CELLS);
         *self = FaceGrid {

@@ -416,12 +416,7 @@ impl Visibility {
                     .iter()
                     .flat_map(|&t| corners[t as usize])
                     .collect();
-                vertices.sort_by(|a, b| {
-                    a.to_array()
-                        .partial_cmp(&b.to_array())
-                        .unwrap_or(std::cmp::Ordering::Equal)
-                });
-                vertices.dedup();
+                sort_dedup(&mut vertices);
                 let (pieces, outline) =
                     pieces_of(f.normal, f.area, &f.triangles, &corners, &vertices, mode);
                 FaceGeom {
@@ -489,12 +484,7 @@ impl Visibility {
                 .iter()
                 .flat_map(|&f| geoms[f as usize].vertices.iter().copied())
                 .collect();
-            corners.sort_by(|a, b| {
-                a.to_array()
-                    .partial_cmp(&b.to_array())
-                    .unwrap_or(std::cmp::Ordering::Equal)
-            });
-            corners.dedup();
+            sort_dedup(&mut corners);
             part.vertices = corners;
         }
         for (k, part) in parts.iter().enumerate() {
@@ -1054,6 +1044,16 @@ fn pieces_of(
         .map(|i| [v(&hull[0]), v(&hull[i]), v(&hull[i + 1])])
         .collect();
     (fan, outline)
+}
+
+/// Sorts points and drops exact repeats (the corners that neighbouring triangles share).
+fn sort_dedup(points: &mut Vec<DVec3>) {
+    points.sort_by(|a, b| {
+        a.to_array()
+            .partial_cmp(&b.to_array())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    points.dedup();
 }
 
 /// Does the sphere (c_o, r_o) meet the half-infinite cylinder swept by the sphere

@@ -212,7 +212,7 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
     // open edges per part: an edge of a part that no other triangle of it uses the
     // other way round (edges inside a merged face cancel like any other)
     let mut open: HashMap<u32, Vec<(u32, u32)>> = HashMap::new();
-    let mut manifold: HashMap<u32, bool> = HashMap::new();
+    let mut non_manifold: std::collections::HashSet<u32> = Default::default();
     for ((a, b), adj) in &edges {
         let part = root(&mut parent, adj[0].0);
         match adj[..] {
@@ -224,14 +224,14 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             }
             [(_, x), (_, y)] if x != y => {}
             _ => {
-                manifold.insert(part, false); // used twice one way, or by three faces
+                non_manifold.insert(part); // used twice one way, or by three faces
             }
         }
     }
     let mut work = 0usize;
     let mut parts: Vec<ConvexPart> = members
         .into_iter()
-        .filter(|(root, fs)| fs.len() >= MIN_PART_FACES && manifold.get(root) != Some(&false))
+        .filter(|(root, fs)| fs.len() >= MIN_PART_FACES && !non_manifold.contains(root))
         .filter_map(|(root, fs)| {
             let mut ids: Vec<u32> = fs
                 .iter()

@@ -79,8 +79,6 @@ struct FaceGeom {
     outline: Vec<DVec3>,
     /// Distinct vertices of the face, for exact half-space tests.
     vertices: Vec<DVec3>,
-    /// The convex part ([`Visibility::parts`]) the face belongs to, or `NO_PART`.
-    part: u32,
     /// Convex parts wholly in front of the face's front side, and of its back side: their
     /// shadows on it are one hull each.
     parts_ahead: [Vec<u32>; 2],
@@ -128,7 +126,7 @@ pub struct Visibility {
     /// Connected convex pieces of the mesh (boxes, dishes): each casts its shadow on a
     /// face wholly behind it as the hull of its projected vertices.
     parts: Vec<ConvexPart>,
-    /// Each face's part (`NO_PART` for none), packed for the candidate search.
+    /// Each face's convex part (index into `parts`; `NO_PART` for none).
     part_of: Vec<u32>,
 }
 
@@ -434,7 +432,6 @@ impl Visibility {
                     },
                     pieces,
                     outline,
-                    part: NO_PART,
                     parts_ahead: Default::default(),
                     lid_side: [false; 2],
                     patch: (i / per_patch) as u32,
@@ -487,10 +484,11 @@ impl Visibility {
             sort_dedup(&mut corners);
             part.vertices = corners;
         }
+        let mut part_of = vec![NO_PART; geoms.len()];
         for (k, part) in parts.iter().enumerate() {
             for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
+                part_of[f as usize] = k as u32;
                 let g = &mut geoms[f as usize];
-                g.part = k as u32;
                 if part.lid.is_some() {
                     g.lid_side = [ahead, !ahead && g.two_sided];
                 }
@@ -515,13 +513,14 @@ impl Visibility {
         let hull_shadows = geoms.len().saturating_mul(parts.len()) <= PART_PAIRS_LIMIT;
         let ahead: Vec<[Vec<u32>; 2]> = geoms
             .par_iter()
-            .map(|g| {
+            .zip(&part_of)
+            .map(|(g, &own)| {
                 let mut ahead: [Vec<u32>; 2] = Default::default();
                 if !hull_shadows {
                     return ahead;
                 }
                 for (k, part) in parts.iter().enumerate() {
-                    if g.part == k as u32 {
+                    if own == k as u32 {
                         continue;
                     }
                     let (c, r) = spheres[k];
@@ -557,7 +556,6 @@ impl Visibility {
         for (g, a) in geoms.iter_mut().zip(ahead) {
             g.parts_ahead = a;
         }
-        let part_of = geoms.iter().map(|g| g.part).collect();
         Visibility {
             mode,
             occluder,
@@ -669,7 +667,8 @@ impl Visibility {
         // A face of a convex cap, on the side facing into the cap: the cap's own faces
         // block a ray from it unless it leaves through the lid, which one clip decides
         // (`Lid`), so they are not collected one by one.
-        let own_lid = (f.lid_side[usize::from(side < 0.0)] && self.clip).then_some(f.part);
+        let own_lid =
+            (f.lid_side[usize::from(side < 0.0)] && self.clip).then_some(self.part_of[face]);
         let lid_clips =
             self.collect_blockers(cache, face, side, &directions, own_lid, &mut s.blockers);
         let full_area: f64 = f.pieces.iter().map(area_of).sum();
@@ -698,9 +697,7 @@ impl Visibility {
         }
         (s.a_sun, s.a_earth, s.rays)
     }
-}
 
-impl Visibility {
     /// Patch- then face-level proofs; what survives are the possible blockers of `face`
     /// (on side `side`) along each direction, into `out`. Faces of part `skip` (the cap
     /// the face belongs to, when it faces into it) are left out; returned per direction
@@ -748,7 +745,7 @@ impl Visibility {
             let proj = &cache.projections[k];
             let out = &mut out[k];
             let mut consider = |g: usize| {
-                if skip.is_none() || self.part_of[g] != f.part {
+                if skip.is_none_or(|own| self.part_of[g] != own) {
                     self.consider_blocker(face, n, g, proj, out)
                 }
             };
@@ -869,7 +866,7 @@ impl Visibility {
             for &part in ahead {
                 let of_part = blockers[k]
                     .iter()
-                    .filter(|b| self.faces[b.face as usize].part == part)
+                    .filter(|b| self.part_of[b.face as usize] == part)
                     .count();
                 if of_part < 2 {
                     continue;
@@ -880,7 +877,7 @@ impl Visibility {
                 convex_hull(&x.part_points, &mut x.hull_order, &mut x.shadow);
                 region.subtract_convex(&x.shadow, MAX_PIECES).ok()?;
                 for (done, b) in x.done.iter_mut().zip(&blockers[k]) {
-                    *done |= self.faces[b.face as usize].part == part;
+                    *done |= self.part_of[b.face as usize] == part;
                 }
                 if region.is_empty() {
                     return Some(());
@@ -1339,7 +1336,6 @@ mod tests {
             pieces: Vec::new(),
             outline: Vec::new(),
             vertices: Vec::new(),
-            part: NO_PART,
             parts_ahead: Default::default(),
             lid_side: [false; 2],
             patch: 0,

@@ -1,0 +1,153 @@
+//! Adaptive ray sampling of a face's visible area, where exact clipping cannot decide.
+
+use super::{reaches, Blocker};
+use crate::geometry::bvh::Occluder;
+use glam::DVec3;
+
+/// Deepest refinement: leaves down to 2⁻¹⁶ of a triangle's size.
+const MAX_DEPTH: u32 = 16;
+
+/// Adaptive sampler state for one face.
+pub(super) struct Sampler<'a> {
+    occluder: &'a Occluder,
+    n: DVec3,
+    /// Face centroid: samples are nudged towards it (see [`Sampler::eval`]).
+    centre: DVec3,
+    /// View, sun and earthshine directions (sun/earth absent when they do not light the face).
+    dirs: [Option<DVec3>; 3],
+    /// Possible blockers per direction; an empty list means the direction is clear.
+    pub(super) blockers: [Vec<Blocker>; 3],
+    /// Leaf diameter (m) below which refinement stops.
+    min_size: f64,
+    /// Area of the face (m²) whose misclassification the tolerance allows.
+    budget: f64,
+    pub(super) rays: u64,
+    pub(super) a_sun: f64,
+    pub(super) a_earth: f64,
+}
+
+impl<'a> Sampler<'a> {
+    pub(super) fn new(
+        occluder: &'a Occluder,
+        n: DVec3,
+        centre: DVec3,
+        dirs: [Option<DVec3>; 3],
+        min_size: f64,
+        budget: f64,
+    ) -> Self {
+        Sampler {
+            occluder,
+            n,
+            centre,
+            dirs,
+            blockers: Default::default(),
+            min_size,
+            budget,
+            rays: 0,
+            a_sun: 0.0,
+            a_earth: 0.0,
+        }
+    }
+
+    /// Bit 0: seen and sunlit; bit 1: seen and earthlit (or earthshine unshadowed).
+    /// Rays are cast only for the directions in `check`.
+    #[inline]
+    pub(super) fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
+        // A sample on the face's edge may lie in the plane of a neighbour that shares the
+        // edge; a ray from there would hit that neighbour at t ≈ 0. Nudge it into the face
+        // by the ray offset (scaled to the object) so edges see what the face's interior sees.
+        let towards = self.centre - p;
+        let len = towards.length();
+        let p = if len > 0.0 {
+            p + towards * (self.occluder.offset().min(0.5 * len) / len)
+        } else {
+            p
+        };
+        let mut clear = [true; 3];
+        for (k, (&c, d)) in check.iter().zip(self.dirs).enumerate() {
+            if let (true, Some(d)) = (c, d) {
+                self.rays += 1;
+                clear[k] = self.occluder.is_clear(p, self.n, d);
+                if k == 0 && !clear[0] {
+                    return 0; // hidden from the observer: nothing else matters
+                }
+            }
+        }
+        let sun = self.dirs[1].is_some() && clear[1];
+        (sun as u8) | ((clear[2] as u8) << 1)
+    }
+
+    /// Refines triangle `p`. `values` are corner samples taken by the parent (with its
+    /// checks, a superset of this piece's); `None` means take them here.
+    pub(super) fn refine(
+        &mut self,
+        p: [DVec3; 3],
+        values: Option<[u8; 3]>,
+        area: f64,
+        depth: u32,
+        tol: f64,
+    ) {
+        let m = (p[0] + p[1] + p[2]) / 3.0;
+        let radius = p.iter().map(|q| q.distance(m)).fold(0.0, f64::max);
+        // Which directions still have a blocker that can reach this piece, and the
+        // narrowest shadow such a blocker can cast.
+        let mut check = [false; 3];
+        let mut feature = f64::INFINITY;
+        for ((needed, dir), blockers) in check.iter_mut().zip(self.dirs).zip(&self.blockers) {
+            let Some(d) = dir else { continue };
+            for b in blockers {
+                if reaches(m, radius, b.centre, b.radius, d) && !b.half_space_clear(d, &p, tol) {
+                    *needed = true;
+                    // a shadow too small to matter need not be hunted for
+                    if b.shadow_area > 0.5 * self.budget {
+                        feature = feature.min(b.feature);
+                    }
+                }
+            }
+        }
+        if check == [false; 3] {
+            // proven clear: seen, and lit by whatever lights the face
+            self.a_sun += if self.dirs[1].is_some() { area } else { 0.0 };
+            self.a_earth += area;
+            return;
+        }
+        let v = match values {
+            Some(v) => v,
+            None => [
+                self.eval(p[0], check),
+                self.eval(p[1], check),
+                self.eval(p[2], check),
+            ],
+        };
+        let vm = self.eval(m, check);
+        let uniform = v[0] == vm && v[1] == vm && v[2] == vm;
+        // Pieces wider than the narrowest possible shadow are split even when their
+        // samples agree (it could fall between them), down to the tolerance's leaf size,
+        // below which a missed sliver is within the error budget.
+        let size = 2.0 * radius;
+        let forced = size > self.min_size && size > feature;
+        if depth >= MAX_DEPTH || size <= self.min_size || (uniform && !forced) {
+            // Leaf: corners weigh 1/6 each, the centroid 1/2 (exact for linear fields).
+            let frac = |bit: u8| {
+                v.iter().map(|x| ((x >> bit) & 1) as f64).sum::<f64>() / 6.0
+                    + ((vm >> bit) & 1) as f64 * 0.5
+            };
+            self.a_sun += frac(0) * area;
+            self.a_earth += frac(1) * area;
+            return;
+        }
+        let ab = 0.5 * (p[0] + p[1]);
+        let bc = 0.5 * (p[1] + p[2]);
+        let ca = 0.5 * (p[2] + p[0]);
+        let (vab, vbc, vca) = (
+            self.eval(ab, check),
+            self.eval(bc, check),
+            self.eval(ca, check),
+        );
+        let q = 0.25 * area;
+        self.refine([p[0], ab, ca], Some([v[0], vab, vca]), q, depth + 1, tol);
+        self.refine([ab, p[1], bc], Some([vab, v[1], vbc]), q, depth + 1, tol);
+        self.refine([ca, bc, p[2]], Some([vca, vbc, v[2]]), q, depth + 1, tol);
+        self.refine([ab, bc, ca], Some([vab, vbc, vca]), q, depth + 1, tol);
+    }
+}

@@ -134,6 +134,9 @@ pub struct Lid {
     centre: glam::DVec2,
     inner: f64,
     outer: f64,
+    /// The corners' angles about `centre`, increasing (unwrapped), rad: the edge a ray
+    /// from the centre leaves through is found by bisection.
+    angles: Vec<f64>,
 }
 
 impl Lid {
@@ -153,12 +156,145 @@ impl Lid {
         if r > self.outer + tol {
             return false;
         }
+        // inside exactly when inside the edge that the ray from the centre through q
+        // leaves by (the outline is convex about the centre)
+        let (a, b) = self.edge(self.sector(q));
+        let e = b - a;
+        e.perp_dot(q - a) >= -tol * e.length()
+    }
+
+    /// The edge (index of its first corner) that the ray from the centre through `q`
+    /// (outline coordinates) leaves the outline by.
+    fn sector(&self, q: glam::DVec2) -> usize {
+        use std::f64::consts::TAU;
+        let r = q - self.centre;
+        let mut phi = r.y.atan2(r.x);
+        let start = self.angles[0];
+        while phi < start {
+            phi += TAU;
+        }
+        while phi >= start + TAU {
+            phi -= TAU;
+        }
+        self.angles.partition_point(|&a| a <= phi).saturating_sub(1)
+    }
+
+    /// Edge `i` (< the number of corners): its first and second corner.
+    fn edge(&self, i: usize) -> (glam::DVec2, glam::DVec2) {
+        let next = if i + 1 == self.outline.len() {
+            0
+        } else {
+            i + 1
+        };
+        (self.outline[i], self.outline[next])
+    }
+
+    /// Where the ray from `p` along unit `d` meets the lid's plane, in the outline's
+    /// coordinates (m); `d` must not be parallel to the plane.
+    pub fn meet(&self, p: glam::DVec3, d: glam::DVec3) -> glam::DVec2 {
+        let hit = p + d * (self.normal.dot(self.origin - p) / d.dot(self.normal)) - self.origin;
+        glam::DVec2::new(hit.dot(self.u), hit.dot(self.w))
+    }
+
+    /// The point of the lid's plane at outline coordinates `q`, m.
+    pub fn at(&self, q: glam::DVec2) -> glam::DVec3 {
+        self.origin + self.u * q.x + self.w * q.y
+    }
+
+    /// Clips the convex polygon `poly` (outline coordinates) to the outline; `scratch` is
+    /// a buffer. Only edges that some corner lies outside of cut, so a small polygon near
+    /// the rim costs one pass over the edges and a cut or two.
+    pub fn clip(
+        &self,
+        poly: &mut Vec<glam::DVec2>,
+        edges: &mut Vec<usize>,
+        scratch: &mut Vec<glam::DVec2>,
+    ) {
+        // The edges that some corner lies outside of: for a corner outside the outline,
+        // a run of edges about the one its ray from the centre leaves by. Cutting by
+        // those alone is exact: the polygon lies inside every other edge already.
         let n = self.outline.len();
-        (0..n).all(|i| {
-            let (a, b) = (self.outline[i], self.outline[(i + 1) % n]);
+        let outside = |i: usize, q: glam::DVec2| {
+            let (a, b) = self.edge(i);
+            (b - a).perp_dot(q - a) < 0.0
+        };
+        edges.clear();
+        for &q in poly.iter() {
+            if q.distance(self.centre) <= self.inner {
+                continue;
+            }
+            let j = self.sector(q);
+            if !outside(j, q) {
+                continue;
+            }
+            edges.push(j);
+            for step in 1..n {
+                let i = if j + step >= n {
+                    j + step - n
+                } else {
+                    j + step
+                };
+                if !outside(i, q) {
+                    break;
+                }
+                edges.push(i);
+            }
+            for step in 1..n {
+                let i = if j >= step { j - step } else { j + n - step };
+                if !outside(i, q) {
+                    break;
+                }
+                edges.push(i);
+            }
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        for &i in edges.iter() {
+            let (a, b) = self.edge(i);
             let e = b - a;
-            e.perp_dot(q - a) >= -tol * e.length()
-        })
+            let side = |q: glam::DVec2| e.perp_dot(q - a);
+            scratch.clear();
+            for j in 0..poly.len() {
+                let (p, q) = (poly[j], poly[(j + 1) % poly.len()]);
+                let (sp, sq) = (side(p), side(q));
+                if sp >= 0.0 {
+                    scratch.push(p);
+                }
+                if (sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0) {
+                    scratch.push(p + (q - p) * (sp / (sp - sq)));
+                }
+            }
+            std::mem::swap(poly, scratch);
+            if poly.len() < 3 {
+                poly.clear();
+                return;
+            }
+        }
+    }
+
+    /// [`Lid::passes`] for every point of the ball about `c` of radius `r` (m) at once:
+    /// `Some(true)` when every ray along `d` from it leaves through the lid, `Some(false)`
+    /// when none does, `None` when the ball is not decided as a whole. The rays from the
+    /// ball meet the lid's plane within r/cos of the centre's ray, cos = d·normal.
+    pub fn classify(&self, c: glam::DVec3, r: f64, d: glam::DVec3, tol: f64) -> Option<bool> {
+        let dn = d.dot(self.normal);
+        if dn <= 0.0 {
+            return Some(false);
+        }
+        let reach = r / dn;
+        if !reach.is_finite() {
+            return None;
+        }
+        let hit = c + d * (self.normal.dot(self.origin - c) / dn) - self.origin;
+        let q = glam::DVec2::new(hit.dot(self.u), hit.dot(self.w));
+        let rq = q.distance(self.centre);
+        if rq + reach <= self.inner {
+            Some(true)
+        } else if rq - reach > self.outer + tol {
+            Some(false)
+        } else {
+            None
+        }
     }
 }
 
@@ -357,6 +493,15 @@ fn lid_of(
         .iter()
         .map(|p| p.distance(centre))
         .fold(0.0, f64::max);
+    let mut angles: Vec<f64> = outline
+        .iter()
+        .map(|p| (p.y - centre.y).atan2(p.x - centre.x))
+        .collect();
+    for i in 1..angles.len() {
+        while angles[i] < angles[i - 1] {
+            angles[i] += std::f64::consts::TAU;
+        }
+    }
     Some(Lid {
         corners,
         normal,
@@ -365,6 +510,7 @@ fn lid_of(
         origin,
         outline,
         centre,
+        angles,
         // shrunk by a hair for rounding: a point this close is decided edge by edge
         inner: inner * (1.0 - 1e-9),
         outer,
@@ -375,6 +521,127 @@ fn lid_of(
 mod tests {
     use super::*;
     use crate::geometry::builtin;
+
+    /// The box-wing dish's lid, with a 7-gon squeezed off-centre for a lid whose inner
+    /// and outer circles are far apart.
+    fn lids() -> Vec<Lid> {
+        let mesh = builtin::box_wing();
+        let faces = Faces::build(&mesh, true);
+        let parts = convex_parts(&mesh, &faces, 1e-9);
+        let dish = parts
+            .into_iter()
+            .find(|p| p.lid.is_some())
+            .expect("the dish");
+        let mut lids = vec![dish.lid.expect("lid")];
+        let mut odd = lids[0].clone();
+        odd.outline = (0..7)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / 7.0;
+                glam::DVec2::new(0.9 * a.cos() + 0.2, 0.4 * a.sin() - 0.1)
+            })
+            .collect();
+        odd.corners = odd.outline.iter().map(|q| odd.at(*q)).collect();
+        let m = odd.outline.len() as f64;
+        odd.centre = odd.outline.iter().sum::<glam::DVec2>() / m;
+        odd.inner = (0..7)
+            .map(|i| {
+                let (a, b) = odd.edge(i);
+                (b - a).perp_dot(odd.centre - a) / (b - a).length()
+            })
+            .fold(f64::INFINITY, f64::min)
+            * (1.0 - 1e-9);
+        odd.outer = odd
+            .outline
+            .iter()
+            .map(|p| p.distance(odd.centre))
+            .fold(0.0, f64::max);
+        let mut angles: Vec<f64> = odd
+            .outline
+            .iter()
+            .map(|p| (p.y - odd.centre.y).atan2(p.x - odd.centre.x))
+            .collect();
+        for i in 1..angles.len() {
+            while angles[i] < angles[i - 1] {
+                angles[i] += std::f64::consts::TAU;
+            }
+        }
+        odd.angles = angles;
+        lids.push(odd);
+        lids
+    }
+
+    /// Inside the outline, by every edge (the definition the lid's shortcuts must match).
+    fn inside(lid: &Lid, q: glam::DVec2) -> bool {
+        (0..lid.outline.len()).all(|i| {
+            let (a, b) = lid.edge(i);
+            (b - a).perp_dot(q - a) >= 0.0
+        })
+    }
+
+    #[test]
+    fn lid_shortcuts_agree_with_testing_every_edge() {
+        // `passes` (one edge found by angle), `classify` (a ball at once) and `clip` (only
+        // the edges some corner is outside of) against plain tests over all edges, for
+        // random points, balls and triangles about the rim.
+        let mut rnd = crate::test_rng(21);
+        for lid in lids() {
+            let below = lid.origin - lid.normal * 0.1;
+            let (mut inside_n, mut outside_n, mut decided) = (0, 0, 0);
+            for _ in 0..4000 {
+                let d = (lid.normal * (0.2 + rnd())
+                    + lid.u * (2.0 * rnd() - 1.0)
+                    + lid.w * (2.0 * rnd() - 1.0))
+                    .normalize();
+                let p = below + lid.u * (2.0 * rnd() - 1.0) + lid.w * (2.0 * rnd() - 1.0);
+                let q = lid.meet(p, d);
+                let want = inside(&lid, q);
+                assert_eq!(lid.passes(p, d, 0.0), want, "point {p} along {d}");
+                if want {
+                    inside_n += 1
+                } else {
+                    outside_n += 1
+                }
+                // a ball: its verdict must hold at its centre and at points on its surface
+                let r = 0.2 * rnd();
+                if let Some(all) = lid.classify(p, r, d, 0.0) {
+                    decided += 1;
+                    for _ in 0..20 {
+                        let e = glam::DVec3::new(
+                            2.0 * rnd() - 1.0,
+                            2.0 * rnd() - 1.0,
+                            2.0 * rnd() - 1.0,
+                        );
+                        let x = p + e.normalize_or_zero() * r;
+                        assert_eq!(
+                            inside(&lid, lid.meet(x, d)),
+                            all,
+                            "ball {p} r {r} along {d}"
+                        );
+                    }
+                }
+                // a triangle about q, clipped: its area against the plain clip by all edges
+                let tri: Vec<glam::DVec2> = (0..3)
+                    .map(|_| q + glam::DVec2::new(rnd() - 0.5, rnd() - 0.5) * 0.6)
+                    .collect();
+                let (mut poly, mut edges, mut scratch) = (tri.clone(), Vec::new(), Vec::new());
+                lid.clip(&mut poly, &mut edges, &mut scratch);
+                let mut region = crate::geometry::polygon::Region::default();
+                region.reset(2.0);
+                region.add_convex(&tri);
+                region.intersect_convex(&lid.outline);
+                let got = crate::geometry::polygon::twice_signed_area(&poly).abs() / 2.0;
+                assert!(
+                    (got - region.area()).abs() < 1e-12,
+                    "{got} vs {}",
+                    region.area()
+                );
+            }
+            assert!(
+                inside_n > 500 && outside_n > 500 && decided > 1000,
+                "{inside_n} {outside_n} {decided}"
+            );
+        }
+    }
 
     #[test]
     fn the_box_wings_parts_are_its_boxes_and_its_dish() {

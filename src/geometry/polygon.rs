@@ -51,6 +51,107 @@ pub fn convex_hull(points: &[DVec2], order: &mut Vec<u32>, out: &mut Vec<DVec2>)
     }
 }
 
+/// Hull corners and near-boundary points of a set of points, by index.
+#[derive(Debug, Default, Clone)]
+pub struct HullIndices {
+    /// Corners of the convex hull, counter-clockwise, without collinear points.
+    pub corners: Vec<u32>,
+    /// Every point within the slack of the hull's boundary (the corners among them), in
+    /// no particular order: what a cut of the point set by a line can expose.
+    pub near: Vec<u32>,
+    order: Vec<u32>,
+    chain: Vec<u32>,
+}
+
+impl HullIndices {
+    /// Computes both lists for `points`; `slack` (m) is how far inside the boundary a
+    /// point still counts as on it. Points well inside an octagon of extreme points are
+    /// dropped first (Akl–Toussaint), so only a band along the boundary is sorted: a
+    /// finely meshed dish projects to thousands of points, mostly inside.
+    pub fn compute(&mut self, points: &[DVec2], slack: f64) {
+        self.order.clear();
+        if points.len() > 32 {
+            let keys = |p: DVec2| [p.x, p.y, p.x + p.y, p.x - p.y];
+            let (mut lo, mut hi) = ([0u32; 4], [0u32; 4]);
+            let (mut lo_v, mut hi_v) = ([f64::INFINITY; 4], [f64::NEG_INFINITY; 4]);
+            for (i, p) in points.iter().enumerate() {
+                for (k, v) in keys(*p).into_iter().enumerate() {
+                    if v < lo_v[k] {
+                        (lo_v[k], lo[k]) = (v, i as u32);
+                    }
+                    if v > hi_v[k] {
+                        (hi_v[k], hi[k]) = (v, i as u32);
+                    }
+                }
+            }
+            // the octagon (some corners may coincide), counter-clockwise: min y, max x−y,
+            // max x, max x+y, max y, min x−y, min x, min x+y
+            let ring = [lo[1], hi[3], hi[0], hi[2], hi[1], lo[3], lo[0], lo[2]];
+            let edges: Vec<(DVec2, DVec2)> = (0..8)
+                .filter_map(|i| {
+                    let (a, b) = (points[ring[i] as usize], points[ring[(i + 1) % 8] as usize]);
+                    let e = b - a;
+                    let len = e.length();
+                    (len > 0.0).then(|| (a, e.perp() / len))
+                })
+                .collect();
+            self.order.extend((0..points.len() as u32).filter(|&i| {
+                let p = points[i as usize];
+                // inward normals are −perp for a counter-clockwise ring
+                // perp is the inward normal of a counter-clockwise ring: a point is kept
+                // unless it lies deeper than the slack inside every edge
+                edges.len() < 3 || edges.iter().any(|&(a, m)| m.dot(p - a) <= slack)
+            }));
+        } else {
+            self.order.extend(0..points.len() as u32);
+        }
+        self.order.sort_unstable_by(|&a, &b| {
+            let (p, q) = (points[a as usize], points[b as usize]);
+            p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
+        });
+        // monotone chains: strict for the corners, tolerant for the near points
+        self.corners.clear();
+        self.near.clear();
+        for tolerant in [false, true] {
+            self.chain.clear();
+            for pass in 0..2 {
+                let start = self.chain.len();
+                for j in 0..self.order.len() {
+                    let i = if pass == 0 {
+                        self.order[j]
+                    } else {
+                        self.order[self.order.len() - 1 - j]
+                    };
+                    let b = points[i as usize];
+                    while self.chain.len() >= start + 2 {
+                        let o = points[self.chain[self.chain.len() - 2] as usize];
+                        let a = points[self.chain[self.chain.len() - 1] as usize];
+                        let turn = (a - o).perp_dot(b - o);
+                        let keep = if tolerant {
+                            turn >= -slack * (b - o).length()
+                        } else {
+                            turn > 0.0
+                        };
+                        if keep {
+                            break;
+                        }
+                        self.chain.pop();
+                    }
+                    self.chain.push(i);
+                }
+                self.chain.pop();
+            }
+            if tolerant {
+                self.near.extend_from_slice(&self.chain);
+            } else {
+                self.corners.extend_from_slice(&self.chain);
+            }
+        }
+        self.near.sort_unstable();
+        self.near.dedup();
+    }
+}
+
 /// The part of a plane (a face) still lit and seen, as disjoint convex pieces.
 #[derive(Debug, Default, Clone)]
 pub struct Region {
@@ -375,6 +476,54 @@ fn split(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hull_indices_find_the_corners_and_every_boundary_point() {
+        // Random points in a disc plus points placed on the edges of a square around it:
+        // the corners must be the square's, and every point within the slack of the
+        // boundary (the placed ones, exactly on it) must be among the near points.
+        let mut rnd = crate::test_rng(5);
+        let mut pts: Vec<DVec2> = (0..3000)
+            .map(|_| {
+                let (r, a) = (rnd().sqrt() * 0.9, rnd() * std::f64::consts::TAU);
+                DVec2::new(r * a.cos(), r * a.sin())
+            })
+            .collect();
+        let square = [
+            DVec2::new(-1.0, -1.0),
+            DVec2::new(1.0, -1.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(-1.0, 1.0),
+        ];
+        let first_placed = pts.len();
+        for k in 0..4 {
+            let (a, b) = (square[k], square[(k + 1) % 4]);
+            pts.extend((0..=10).map(|i| a + (b - a) * (i as f64 / 10.0)));
+        }
+        let mut h = HullIndices::default();
+        h.compute(&pts, 1e-9);
+        let mut corners: Vec<DVec2> = h.corners.iter().map(|&i| pts[i as usize]).collect();
+        assert_eq!(corners.len(), 4, "{corners:?}");
+        assert!(twice_signed_area(&corners) > 0.0, "counter-clockwise");
+        corners.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        let mut want = square.to_vec();
+        want.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        assert_eq!(corners, want);
+        for (i, p) in pts.iter().enumerate().skip(first_placed) {
+            let found = h.near.binary_search(&(i as u32)).is_ok();
+            assert!(found, "boundary point {i} {p:?} missed");
+        }
+        // nothing from inside the disc (0.9 from the centre, 0.1 inside the square)
+        assert!(h.near.iter().all(|&i| i as usize >= first_placed));
+        // the same corners as the plain hull for points with no structure
+        let mut rnd = crate::test_rng(6);
+        let cloud: Vec<DVec2> = (0..500).map(|_| DVec2::new(rnd(), rnd() * rnd())).collect();
+        h.compute(&cloud, 0.0);
+        let (mut order, mut hull) = (Vec::new(), Vec::new());
+        convex_hull(&cloud, &mut order, &mut hull);
+        let got: Vec<DVec2> = h.corners.iter().map(|&i| cloud[i as usize]).collect();
+        assert_eq!(got, hull);
+    }
 
     fn square(x0: f64, y0: f64, s: f64) -> Vec<DVec2> {
         vec![

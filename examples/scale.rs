@@ -2,6 +2,8 @@
 //! at scale: `cargo run --release --example scale -- FLAT_LEVELS DISH_RINGS DISH_SECTORS EPOCHS`
 //! (e.g. `7 5 24 10000` gives a 0.85 M-triangle box-wing; wrap in `/usr/bin/time -v` for
 //! memory). `FLAT_LEVELS` = `sphere:L` uses a convex icosphere of 20·4^L triangles instead.
+//! A fifth argument names a file to write the light curve to (irradiance per epoch, one
+//! per line, full precision), to compare two builds.
 
 use glint::geometry::builtin;
 use glint::scene::{Limits, Scene};
@@ -17,8 +19,11 @@ fn main() {
     }
     let args: Vec<u32> = raw
         .iter()
+        .take(4)
         .map(|a| a.parse().expect("integer arguments"))
         .collect();
+    let out = (raw.len() == 5).then(|| raw.pop().expect("five arguments"));
+    let args: Vec<u32> = args.into_iter().take(4).collect();
     let [flat, rings, sectors, epochs] = args[..] else {
         eprintln!("usage: scale FLAT_LEVELS DISH_RINGS DISH_SECTORS EPOCHS");
         std::process::exit(2);
@@ -34,6 +39,14 @@ fn main() {
     let base = scene.epochs.clone();
     scene.epochs = (0..epochs as usize).map(|i| base[i % base.len()]).collect();
     let r = glint::simulate(&scene);
+    if let Some(path) = out {
+        let lines: Vec<String> = r
+            .epochs
+            .iter()
+            .map(|e| format!("{:e}", e.irradiance_w_m2))
+            .collect();
+        std::fs::write(&path, lines.join("\n") + "\n").expect("write the light curve");
+    }
     let s = &r.summary;
     println!(
         "{} triangles, {} faces, {} epochs in {:.1} ms = {:.0} epochs/s, {} rays ({:.0} rays/epoch)",

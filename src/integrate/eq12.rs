@@ -30,6 +30,8 @@ struct LitFace {
     sun: f64,
     /// Earthshine term Σ f·cosθi·cosθr·E_beam, W/(m²·sr) per m² of face.
     earth: f64,
+    /// The face's area, m² (kept here: pass 2 then reads this list alone).
+    area: f64,
 }
 
 /// The light arriving at the object at one epoch: the Sun (after any eclipse) and the
@@ -145,6 +147,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                 side,
                 sun: sun_term,
                 earth: earth_term,
+                area: face.area,
             });
         }
     }
@@ -180,10 +183,13 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         earth_sum = 0.0;
         lit_visible_area = 0.0;
         for lf in &scratch.lit {
-            let face = &p.faces.faces[lf.face as usize];
-            let (f_sun, f_earth) = match &p.visibility {
-                _ if p.image.is_some() => scratch.image.fractions(lf.face as usize, face.area),
-                None => (1.0, 1.0),
+            // lit-and-seen areas, m²
+            let (a_sun, a_earth) = match &p.visibility {
+                _ if p.image.is_some() => {
+                    let (f_sun, f_earth) = scratch.image.fractions(lf.face as usize, lf.area);
+                    (f_sun * lf.area, f_earth * lf.area)
+                }
+                None => (lf.area, lf.area),
                 Some(vis) => {
                     let dirs = Uncertain {
                         view: v,
@@ -206,13 +212,13 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                         budget,
                     );
                     rays += n;
-                    (a_sun / face.area, a_earth / face.area)
+                    (a_sun, a_earth)
                 }
             };
-            sun_sum += lf.sun * f_sun * face.area;
-            earth_sum += lf.earth * f_earth * face.area;
+            sun_sum += lf.sun * a_sun;
+            earth_sum += lf.earth * a_earth;
             if lf.sun > 0.0 {
-                lit_visible_area += f_sun * face.area;
+                lit_visible_area += a_sun;
             }
         }
         let found = sun_sum + earth_sum;

@@ -230,8 +230,9 @@ mod tests {
             pieces: Vec::new(),
             outline: Vec::new(),
             vertices: Vec::new(),
-            parts_ahead: Default::default(),
+            part_shadows: Vec::new(),
             lid_side: [false; 2],
+            own_outside: [false; 2],
             patch: 0,
         }
     }

@@ -1,0 +1,406 @@
+//! Convex parts ([`ConvexPart`]: boxes, dishes) as whole shadow casters.
+//!
+//! Along a direction d a convex part hides exactly what its convex hull hides, so its
+//! shadow on a face's plane is the parallel projection of the hull — of the part of the
+//! hull on the face's lit side, when the plane cuts the part. That projection is a convex
+//! polygon whose corners are (a) vertices on the boundary of the part's own projection
+//! across d — its *silhouette*, found once per epoch and direction, whichever face it
+//! falls on, since projecting along d onto any plane is an affine map of the projection
+//! across d — and (b) where the part's edges cross the face's plane, found once per
+//! request. Why (a) suffices: a point of the cut hull that is extreme in its projection
+//! and lies off the plane is extreme for the whole hull too (the segment towards any point
+//! further out would stay on the lit side for a while).
+//!
+//! A part cut by a face's plane is not used when it is a cap whose section by the plane
+//! overlaps the face: a point of the face inside the hull may see out through the lid.
+
+use super::{FaceGeom, NO_PART};
+use crate::geometry::convex::ConvexPart;
+use crate::geometry::polygon::{convex_hull, HullIndices, Region};
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+/// How one convex part shadows one face.
+#[derive(Debug, Clone)]
+pub(super) struct PartShadow {
+    pub(super) part: u32,
+    /// Sides of the face (front, back) whose shadows it casts whole.
+    pub(super) sides: [bool; 2],
+    /// Sides it lies wholly behind: none of its faces can block them.
+    pub(super) behind: [bool; 2],
+    /// The face's plane cuts the part: its shadow is that of the hull's part on the face's
+    /// side, whose corners include `crossings`.
+    pub(super) cut: bool,
+    /// Where the part's edges cross the face's plane, m.
+    pub(super) crossings: Vec<DVec3>,
+}
+
+/// The bounding sphere of each part: centre and radius, m.
+pub(super) fn spheres(parts: &[ConvexPart]) -> Vec<(DVec3, f64)> {
+    parts
+        .iter()
+        .map(|p| {
+            let (lo, hi) = p.vertices.iter().fold(
+                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+            );
+            let c = 0.5 * (lo + hi);
+            (
+                c,
+                p.vertices.iter().map(|v| v.distance(c)).fold(0.0, f64::max),
+            )
+        })
+        .collect()
+}
+
+/// Above this many edge-against-plane tests (summed over the faces that cut parts), cut
+/// parts shadow face by face instead.
+const CUT_WORK_LIMIT: usize = 50_000_000;
+
+/// Fewest faces for a part cut by a face's plane to be cast whole: a box's few faces are
+/// each proven harmless or clipped for less than its hull costs (the fine dish's faces
+/// cut the bus: whole, they cost a third of an epoch).
+const CUT_MIN_FACES: usize = 16;
+
+/// For every face, the parts that shadow it whole (its own part excluded).
+pub(super) fn part_shadows(
+    geoms: &[FaceGeom],
+    parts: &[ConvexPart],
+    part_of: &[u32],
+    spheres: &[(DVec3, f64)],
+    tol: f64,
+) -> Vec<Vec<PartShadow>> {
+    // where each part lies against each face's plane: (part, lo, hi) heights, m
+    let heights: Vec<Vec<(u32, f64, f64)>> = geoms
+        .par_iter()
+        .zip(part_of)
+        .map(|(g, &own)| {
+            let mut out = Vec::new();
+            for (k, part) in parts.iter().enumerate() {
+                if own == k as u32 {
+                    continue;
+                }
+                let (c, r) = spheres[k];
+                let h = g.normal.dot(c - g.centroid);
+                if (h - r > tol) || (h + r < -tol) {
+                    out.push((k as u32, h - r, h + r)); // the sphere decides
+                    continue;
+                }
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+                for v in &part.vertices {
+                    let h = g.normal.dot(*v - g.centroid);
+                    lo = lo.min(h);
+                    hi = hi.max(h);
+                    if lo < -tol && hi > tol {
+                        break; // cut: the heights matter no further
+                    }
+                }
+                out.push((k as u32, lo, hi));
+            }
+            out
+        })
+        .collect();
+    let edges: Vec<usize> = parts
+        .iter()
+        .map(|p| {
+            p.faces
+                .iter()
+                .map(|&f| polygons(&geoms[f as usize]).map(<[_]>::len).sum::<usize>())
+                .sum()
+        })
+        .collect();
+    let cut_work: usize = heights
+        .iter()
+        .flatten()
+        .filter(|&&(_, lo, hi)| lo < -tol && hi > tol)
+        .map(|&(k, _, _)| edges[k as usize])
+        .sum();
+    let cuts = cut_work <= CUT_WORK_LIMIT;
+    geoms
+        .par_iter()
+        .zip(heights)
+        .map(|(g, hs)| {
+            hs.into_iter()
+                .filter_map(|(k, lo, hi)| {
+                    let part = &parts[k as usize];
+                    if lo >= -tol && hi > tol {
+                        return Some(whole(k, [true, false], [false, true]));
+                    }
+                    if hi <= tol && lo < -tol {
+                        return Some(whole(k, [false, true], [true, false]));
+                    }
+                    if !(cuts && lo < -tol && hi > tol && part.faces.len() >= CUT_MIN_FACES) {
+                        return None; // in the face's plane, too few faces, or too much work
+                    }
+                    let crossings = crossings(g, part, geoms, tol);
+                    if part.lid.is_some() && section_meets_face(g, part, &crossings, tol) {
+                        return None;
+                    }
+                    Some(PartShadow {
+                        part: k,
+                        sides: [true, g.two_sided],
+                        behind: [false; 2],
+                        cut: true,
+                        crossings,
+                    })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+fn whole(part: u32, sides: [bool; 2], behind: [bool; 2]) -> PartShadow {
+    PartShadow {
+        part,
+        sides,
+        behind,
+        cut: false,
+        crossings: Vec::new(),
+    }
+}
+
+/// The convex polygons a face is made of: its outline, or its triangles.
+fn polygons(g: &FaceGeom) -> impl Iterator<Item = &[DVec3]> {
+    let outline = (!g.outline.is_empty()).then_some(&g.outline[..]);
+    let pieces = g
+        .outline
+        .is_empty()
+        .then_some(&g.pieces[..])
+        .into_iter()
+        .flatten();
+    outline.into_iter().chain(pieces.map(|t| &t[..]))
+}
+
+/// Points where the edges of `part`'s faces cross the plane of `g`, m.
+fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> Vec<DVec3> {
+    let h = |p: DVec3| g.normal.dot(p - g.centroid);
+    let mut out = Vec::new();
+    for &f in &part.faces {
+        for poly in polygons(&geoms[f as usize]) {
+            for (i, &a) in poly.iter().enumerate() {
+                let b = poly[(i + 1) % poly.len()];
+                let (ha, hb) = (h(a), h(b));
+                if (ha > 0.0 && hb < -tol) || (hb > 0.0 && ha < -tol) {
+                    out.push(a + (b - a) * (ha / (ha - hb)));
+                }
+            }
+        }
+    }
+    super::sort_dedup(&mut out);
+    out
+}
+
+/// Does the part's section by the plane of `g` overlap `g` (by more than rounding)?
+fn section_meets_face(g: &FaceGeom, part: &ConvexPart, crossings: &[DVec3], tol: f64) -> bool {
+    let (u, w) = crate::radiometry::earth::orthonormal_basis(g.normal);
+    let plane = |p: &DVec3| {
+        let r = *p - g.centroid;
+        DVec2::new(r.dot(u), r.dot(w))
+    };
+    let on_plane = part
+        .vertices
+        .iter()
+        .filter(|v| g.normal.dot(**v - g.centroid).abs() <= tol);
+    let points: Vec<DVec2> = crossings.iter().chain(on_plane).map(plane).collect();
+    let (mut order, mut section) = (Vec::new(), Vec::new());
+    convex_hull(&points, &mut order, &mut section);
+    let mut region = Region::default();
+    region.reset(g.radius);
+    let mut poly = Vec::new();
+    for p in polygons(g) {
+        poly.clear();
+        poly.extend(p.iter().map(plane));
+        region.add_convex(&poly);
+    }
+    if section.len() < 3 {
+        return true; // a sliver of a cut, from rounding: not worth proving
+    }
+    region.intersect_convex(&section);
+    region.area() > tol * g.radius
+}
+
+/// For each cap (a part with a lid), the faces of the rest of the mesh that a ray leaving
+/// one of its faces into the cap can meet: it runs inside the hull up to the lid, then in
+/// front of the lid's plane, so a face wholly behind that plane and outside the hull is
+/// never met. `None` for lidless parts, and where testing would cost more than it saves.
+pub(super) fn lid_blockers(
+    geoms: &[FaceGeom],
+    parts: &[ConvexPart],
+    part_of: &[u32],
+    tol: f64,
+) -> Vec<Option<Vec<u32>>> {
+    parts
+        .iter()
+        .enumerate()
+        .map(|(k, part)| {
+            let lid = part.lid.as_ref()?;
+            if geoms.len().saturating_mul(part.vertices.len()) > LID_WORK_LIMIT {
+                return None;
+            }
+            let height = |v: DVec3| lid.normal.dot(v - lid.origin);
+            // the hull lies between its deepest point and the lid's plane
+            let deepest = part.vertices.iter().map(|v| height(*v)).fold(0.0, f64::min);
+            Some(
+                (0..geoms.len() as u32)
+                    .into_par_iter()
+                    .filter(|&g| {
+                        let o = &geoms[g as usize];
+                        if part_of[g as usize] == k as u32 {
+                            return false;
+                        }
+                        if o.vertices.is_empty() {
+                            return true; // nothing to prove it with
+                        }
+                        if o.vertices.iter().any(|v| height(*v) > tol) {
+                            return true; // in front of the lid
+                        }
+                        if o.vertices.iter().all(|v| height(*v) <= deepest + tol) {
+                            return false; // below the hull
+                        }
+                        // outside the hull when the face's plane has the hull on one side
+                        let h = |v: &DVec3| o.normal.dot(*v - o.centroid);
+                        let above = part.vertices.iter().all(|v| h(v) >= -tol);
+                        let below = part.vertices.iter().all(|v| h(v) <= tol);
+                        !(above || below)
+                    })
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
+/// Above this many faces × cap vertices, a cap's blockers are searched per epoch instead.
+const LID_WORK_LIMIT: usize = 200_000_000;
+
+/// Per vertex of each part: a cone (unit axis, sine of its half-angle; > 1 for a cone too
+/// wide to use) that holds the outward normals of every face at the vertex, the lid's
+/// included. A vertex can lie on the part's silhouette along d only where some plane
+/// through it parallel to d supports the hull, i.e. its cone holds a normal across d:
+/// |axis·d| ≤ sin(half-angle). On a finely meshed dish that leaves a narrow band.
+pub(super) fn normal_cones(
+    parts: &[ConvexPart],
+    geoms: &[FaceGeom],
+    faces: &crate::geometry::Faces,
+    corners: &[[DVec3; 3]],
+) -> Vec<Vec<[f64; 4]>> {
+    parts
+        .par_iter()
+        .map(|part| {
+            let index = |p: &DVec3| {
+                part.vertices
+                    .binary_search_by(|v| {
+                        v.to_array()
+                            .partial_cmp(&p.to_array())
+                            .unwrap_or(std::cmp::Ordering::Equal)
+                    })
+                    .ok()
+            };
+            let mut normals: Vec<Vec<DVec3>> = vec![Vec::new(); part.vertices.len()];
+            for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
+                let out = if ahead {
+                    -geoms[f as usize].normal
+                } else {
+                    geoms[f as usize].normal
+                };
+                for &t in &faces.faces[f as usize].triangles {
+                    for c in &corners[t as usize] {
+                        if let Some(i) = index(c) {
+                            if !normals[i].contains(&out) {
+                                normals[i].push(out);
+                            }
+                        }
+                    }
+                }
+            }
+            if let Some(lid) = &part.lid {
+                for c in &lid.corners {
+                    if let Some(i) = index(c) {
+                        normals[i].push(lid.normal);
+                    }
+                }
+            }
+            normals
+                .iter()
+                .map(|ns| {
+                    let sum: DVec3 = ns.iter().sum();
+                    if ns.is_empty() || sum.length_squared() < 1e-12 {
+                        return [0.0, 0.0, 1.0, 2.0];
+                    }
+                    let axis = sum.normalize();
+                    let min_cos = ns.iter().map(|n| n.dot(axis)).fold(1.0, f64::min);
+                    let sin = if min_cos <= 1e-3 {
+                        2.0 // 90° or more: every direction
+                    } else {
+                        // padded well beyond rounding: a vertex a hair inside the boundary
+                        // must still count as on it
+                        (1.0 - min_cos * min_cos).max(0.0).sqrt() + 1e-6
+                    };
+                    [axis.x, axis.y, axis.z, sin]
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// A part's silhouette along one direction, kept for the epoch.
+#[derive(Default)]
+pub(super) struct Silhouette {
+    pub(super) dir: Option<DVec3>,
+    /// Corners of the part's projection across `dir` and its vertices on or near its
+    /// boundary, as indices into the part's vertices.
+    pub(super) corners: Vec<u32>,
+    pub(super) near: Vec<u32>,
+    hull: HullIndices,
+    /// Vertices that may lie on the silhouette, and their projections.
+    keep: Vec<u32>,
+    points: Vec<DVec2>,
+}
+
+impl Silhouette {
+    /// The silhouette of `part` (with its vertices' normal `cones`) along unit `d`,
+    /// computed unless already held; `tol` (m) is how close to the boundary counts as on it.
+    pub(super) fn along(&mut self, part: &ConvexPart, cones: &[[f64; 4]], d: DVec3, tol: f64) {
+        if self.dir == Some(d) {
+            return;
+        }
+        let (u, w) = crate::radiometry::earth::orthonormal_basis(d);
+        self.keep.clear();
+        self.points.clear();
+        for (i, (v, c)) in part.vertices.iter().zip(cones).enumerate() {
+            if c[3] > 1.0 || (c[0] * d.x + c[1] * d.y + c[2] * d.z).abs() <= c[3] {
+                self.keep.push(i as u32);
+                self.points.push(DVec2::new(v.dot(u), v.dot(w)));
+            }
+        }
+        self.hull.compute(&self.points, tol);
+        self.corners.clear();
+        self.corners
+            .extend(self.hull.corners.iter().map(|&j| self.keep[j as usize]));
+        self.near.clear();
+        self.near
+            .extend(self.hull.near.iter().map(|&j| self.keep[j as usize]));
+        self.dir = Some(d);
+    }
+}
+
+/// Per patch: how many of its faces belong to each part (parts in order; faces of no
+/// part are not counted).
+pub(super) fn patch_parts(patches: &[super::Patch], part_of: &[u32]) -> Vec<Vec<(u32, u32)>> {
+    patches
+        .iter()
+        .map(|p| {
+            let mut counts: Vec<(u32, u32)> = Vec::new();
+            for f in p.faces.clone() {
+                let part = part_of[f as usize];
+                if part == NO_PART {
+                    continue;
+                }
+                match counts.binary_search_by_key(&part, |c| c.0) {
+                    Ok(i) => counts[i].1 += 1,
+                    Err(i) => counts.insert(i, (part, 1)),
+                }
+            }
+            counts
+        })
+        .collect()
+}

@@ -15,13 +15,19 @@
 //! then **clipped**: each possible blocker face, cut to the part in front of the face's
 //! plane, is projected along the direction onto that plane (a convex polygon) and
 //! subtracted from the face ([`crate::geometry::polygon::Region`]). That area is exact —
-//! no rays, no tolerance — and costs a few polygon splits per blocker. A convex part of
-//! the mesh (a box, a dish: [`crate::geometry::convex::ConvexPart`]) wholly in front of
-//! the face is subtracted as one polygon, the hull of its projected vertices, instead of
-//! face by face: a finely meshed dish over the bus would otherwise cut the bus's top into
-//! hundreds of pieces. A face of a convex cap, on its inner side, is instead clipped to
-//! the cap's lid projected back onto it (what of it looks out through the rim), and the
-//! cap's own faces are not collected as blockers at all.
+//! no rays, no tolerance — and costs a few polygon splits per blocker.
+//!
+//! Convex parts of the mesh (a box, a dish: [`crate::geometry::convex::ConvexPart`]) are
+//! handled whole ([`parts`]):
+//! - a part in front of a face, or cut by its plane (when it has many faces), is
+//!   subtracted as one polygon from its silhouette, instead of face by face: a finely
+//!   meshed dish over the bus would otherwise cut the bus's top into hundreds of pieces;
+//! - a part wholly behind a face, and a face's own part seen from outside, cannot block
+//!   it: their faces are not searched at all;
+//! - a face of a convex cap, on its inner side, sees out only through the cap's lid
+//!   (its rim): per direction the lid passes all of it, none of it, or it is clipped to
+//!   the lid projected back onto it; only faces in front of the lid or inside the cap's
+//!   hull ([`parts::lid_blockers`]) are searched besides.
 //!
 //! Faces nearly edge-on to a direction (the projection stretches without bound) or cut
 //! into too many pieces are **sampled** with rays instead, refining each triangle
@@ -119,7 +125,8 @@ enum Side {
     Mixed,
 }
 
-/// Ray-casting state built once per request.
+/// Ray-casting state built once per request. The per-epoch blocker search
+/// ([`grid`]) and the ray sampler ([`sampler`]) have their own modules.
 pub struct Visibility {
     mode: VisibilityMode,
     occluder: Occluder,

@@ -829,6 +829,9 @@ impl Visibility {
         let [sv, ss, se] = &mut x.silhouettes;
         shadows(&mut x.lit, 0, &mut x.shadows, sv, &x.part_hits[0])?;
         let seen = x.lit.area();
+        if x.lit.is_empty() {
+            return Some((0.0, 0.0)); // hidden: nothing to light
+        }
         let a_earth = if dirs[2].is_some() {
             x.earthlit.clone_from(&x.lit);
             shadows(&mut x.earthlit, 2, &mut x.shadows, se, &x.part_hits[2])?;

@@ -147,8 +147,7 @@ impl Lid {
         if dn <= 0.0 {
             return false;
         }
-        let hit = p + d * (self.normal.dot(self.origin - p) / dn) - self.origin;
-        let q = glam::DVec2::new(hit.dot(self.u), hit.dot(self.w));
+        let q = self.meet(p, d);
         let r = q.distance(self.centre);
         if r <= self.inner {
             return true;
@@ -285,9 +284,7 @@ impl Lid {
         if !reach.is_finite() {
             return None;
         }
-        let hit = c + d * (self.normal.dot(self.origin - c) / dn) - self.origin;
-        let q = glam::DVec2::new(hit.dot(self.u), hit.dot(self.w));
-        let rq = q.distance(self.centre);
+        let rq = self.meet(c, d).distance(self.centre);
         if rq + reach <= self.inner {
             Some(true)
         } else if rq - reach > self.outer + tol {
@@ -482,39 +479,54 @@ fn lid_of(
     if !(convex && (turning - std::f64::consts::TAU).abs() < 1e-6) {
         return None;
     }
-    let centre = outline.iter().sum::<glam::DVec2>() / m as f64;
-    let inner = (0..m)
-        .map(|i| {
-            let (a, b) = (outline[i], outline[(i + 1) % m]);
-            (b - a).perp_dot(centre - a) / (b - a).length().max(f64::MIN_POSITIVE)
-        })
-        .fold(f64::INFINITY, f64::min);
-    let outer = outline
-        .iter()
-        .map(|p| p.distance(centre))
-        .fold(0.0, f64::max);
-    let mut angles: Vec<f64> = outline
-        .iter()
-        .map(|p| (p.y - centre.y).atan2(p.x - centre.x))
-        .collect();
-    for i in 1..angles.len() {
-        while angles[i] < angles[i - 1] {
-            angles[i] += std::f64::consts::TAU;
+    Some(Lid::new(corners, normal, (u, w, origin), outline))
+}
+
+impl Lid {
+    /// A lid from its corners (m), outward unit normal, in-plane axes and origin, and its
+    /// outline (counter-clockwise, convex, in those axes): the circles and angles about
+    /// the corners' mean that [`Lid::passes`] and [`Lid::clip`] decide by.
+    fn new(
+        corners: Vec<glam::DVec3>,
+        normal: glam::DVec3,
+        (u, w, origin): (glam::DVec3, glam::DVec3, glam::DVec3),
+        outline: Vec<glam::DVec2>,
+    ) -> Lid {
+        let m = outline.len();
+        let centre = outline.iter().sum::<glam::DVec2>() / m as f64;
+        let inner = (0..m)
+            .map(|i| {
+                let (a, b) = (outline[i], outline[(i + 1) % m]);
+                (b - a).perp_dot(centre - a) / (b - a).length().max(f64::MIN_POSITIVE)
+            })
+            .fold(f64::INFINITY, f64::min);
+        let outer = outline
+            .iter()
+            .map(|p| p.distance(centre))
+            .fold(0.0, f64::max);
+        let mut angles: Vec<f64> = outline
+            .iter()
+            .map(|p| (p.y - centre.y).atan2(p.x - centre.x))
+            .collect();
+        for i in 1..angles.len() {
+            while angles[i] < angles[i - 1] {
+                angles[i] += std::f64::consts::TAU;
+            }
+        }
+        Lid {
+            corners,
+            normal,
+            u,
+            w,
+            origin,
+            outline,
+            centre,
+            angles,
+            // shrunk by a hair for rounding: a point this close is decided edge by edge
+            inner: inner * (1.0 - 1e-9),
+            outer,
         }
     }
-    Some(Lid {
-        corners,
-        normal,
-        u,
-        w,
-        origin,
-        outline,
-        centre,
-        angles,
-        // shrunk by a hair for rounding: a point this close is decided edge by edge
-        inner: inner * (1.0 - 1e-9),
-        outer,
-    })
 }
 
 #[cfg(test)]
@@ -533,39 +545,15 @@ mod tests {
             .find(|p| p.lid.is_some())
             .expect("the dish");
         let mut lids = vec![dish.lid.expect("lid")];
-        let mut odd = lids[0].clone();
-        odd.outline = (0..7)
+        let base = &lids[0];
+        let outline: Vec<glam::DVec2> = (0..7)
             .map(|i| {
                 let a = std::f64::consts::TAU * i as f64 / 7.0;
                 glam::DVec2::new(0.9 * a.cos() + 0.2, 0.4 * a.sin() - 0.1)
             })
             .collect();
-        odd.corners = odd.outline.iter().map(|q| odd.at(*q)).collect();
-        let m = odd.outline.len() as f64;
-        odd.centre = odd.outline.iter().sum::<glam::DVec2>() / m;
-        odd.inner = (0..7)
-            .map(|i| {
-                let (a, b) = odd.edge(i);
-                (b - a).perp_dot(odd.centre - a) / (b - a).length()
-            })
-            .fold(f64::INFINITY, f64::min)
-            * (1.0 - 1e-9);
-        odd.outer = odd
-            .outline
-            .iter()
-            .map(|p| p.distance(odd.centre))
-            .fold(0.0, f64::max);
-        let mut angles: Vec<f64> = odd
-            .outline
-            .iter()
-            .map(|p| (p.y - odd.centre.y).atan2(p.x - odd.centre.x))
-            .collect();
-        for i in 1..angles.len() {
-            while angles[i] < angles[i - 1] {
-                angles[i] += std::f64::consts::TAU;
-            }
-        }
-        odd.angles = angles;
+        let corners = outline.iter().map(|q| base.at(*q)).collect();
+        let odd = Lid::new(corners, base.normal, (base.u, base.w, base.origin), outline);
         lids.push(odd);
         lids
     }

@@ -51,19 +51,7 @@ impl Mesh {
     /// Centre of the axis-aligned bounding box and the radius of the sphere around it
     /// that holds every vertex, m.
     pub fn bounding_sphere(&self) -> (DVec3, f64) {
-        let mut lo = DVec3::splat(f64::INFINITY);
-        let mut hi = DVec3::splat(f64::NEG_INFINITY);
-        for v in &self.vertices {
-            lo = lo.min(*v);
-            hi = hi.max(*v);
-        }
-        let centre = 0.5 * (lo + hi);
-        let radius = self
-            .vertices
-            .iter()
-            .map(|v| v.distance(centre))
-            .fold(0.0, f64::max);
-        (centre, radius)
+        bounding_sphere(&self.vertices)
     }
 
     /// Total surface area, m².
@@ -80,4 +68,18 @@ impl Mesh {
             ..self.clone()
         }
     }
+}
+
+/// A sphere holding every point: centre (of their bounding box) and radius, m.
+pub fn bounding_sphere(points: &[DVec3]) -> (DVec3, f64) {
+    let (lo, hi) = points.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+    );
+    let centre = 0.5 * (lo + hi);
+    let radius = points
+        .iter()
+        .map(|v| v.distance(centre))
+        .fold(0.0, f64::max);
+    (centre, radius)
 }

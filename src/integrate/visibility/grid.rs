@@ -228,6 +228,7 @@ mod tests {
             area: 1.0,
             two_sided: false,
             pieces: Vec::new(),
+            pieces_area: 0.0,
             outline: Vec::new(),
             vertices: Vec::new(),
             part_shadows: Vec::new(),

@@ -87,6 +87,8 @@ struct FaceGeom {
     /// finely it is meshed — a fan over its outline, so sampling cost follows the face's
     /// shape, not its tessellation.
     pieces: Vec<[DVec3; 3]>,
+    /// Their total area, m² (the face's area to rounding).
+    pieces_area: f64,
     /// The face's outline when it is a convex polygon (else empty): one polygon to project
     /// as a shadow or to clip, however finely the face is meshed.
     outline: Vec<DVec3>,
@@ -104,6 +106,22 @@ struct FaceGeom {
 }
 
 const NO_PART: u32 = u32::MAX;
+
+impl FaceGeom {
+    /// The convex polygons the face is made of: its outline, or else its triangles.
+    fn polygons(&self) -> impl Iterator<Item = &[DVec3]> {
+        let outline = (!self.outline.is_empty()).then_some(&self.outline[..]);
+        let pieces = self.outline.is_empty().then_some(&self.pieces[..]);
+        outline
+            .into_iter()
+            .chain(pieces.into_iter().flatten().map(|t| &t[..]))
+    }
+}
+
+/// Area of a triangle, m².
+fn triangle_area(t: &[DVec3; 3]) -> f64 {
+    0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length()
+}
 
 /// A spatial group of consecutive faces.
 struct Patch {
@@ -262,6 +280,7 @@ impl Visibility {
                     } else {
                         outline.clone()
                     },
+                    pieces_area: pieces.iter().map(triangle_area).sum(),
                     pieces,
                     outline,
                     part_shadows: Vec::new(),
@@ -433,7 +452,6 @@ impl Visibility {
         // Earthshine's representative direction may lie below the face while parts of
         // the Earth light it: no meaningful ray then; count it as unshadowed.
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-        let area_of = |t: &[DVec3; 3]| 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
         let directions = [Some(dirs.view), dirs.sun, earth];
         // A shadow edge crosses about perimeter/h leaves of size h, each misjudged by a
         // fraction of its area ~h²: the error ~ perimeter·h·c falls like h, so leaves stop
@@ -446,7 +464,7 @@ impl Visibility {
         if self.mode == VisibilityMode::Centroid {
             for c in &f.pieces {
                 let bits = s.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
-                let a = area_of(c);
+                let a = triangle_area(c);
                 s.a_sun += a * (bits & 1) as f64;
                 s.a_earth += a * ((bits >> 1) & 1) as f64;
             }
@@ -477,7 +495,7 @@ impl Visibility {
                 },
             )
         };
-        let full_area: f64 = f.pieces.iter().map(area_of).sum();
+        let full_area = f.pieces_area;
         if s.blockers.iter().all(Vec::is_empty)
             && cache.exact.part_hits.iter().all(Vec::is_empty)
             && lids.iter().all(|l| *l != LidState::Clip)
@@ -497,7 +515,7 @@ impl Visibility {
             self.collect_blockers(cache, face, side, &directions, false, &mut s.blockers);
         }
         for piece in &f.pieces {
-            s.refine(*piece, None, area_of(piece), 0, self.tol);
+            s.refine(*piece, None, triangle_area(piece), 0, self.tol);
         }
         (s.a_sun, s.a_earth, s.rays)
     }
@@ -712,15 +730,9 @@ impl Visibility {
         };
         x.lit.reset(f.radius);
         let poly = &mut x.shadows.shadow;
-        if f.outline.is_empty() {
-            for t in &f.pieces {
-                poly.clear();
-                poly.extend(t.iter().map(|p| plane(*p)));
-                x.lit.add_convex(poly);
-            }
-        } else {
+        for p in f.polygons() {
             poly.clear();
-            poly.extend(f.outline.iter().map(|p| plane(*p)));
+            poly.extend(p.iter().map(|p| plane(*p)));
             x.lit.add_convex(poly);
         }
         // view first: both the sunlit and the earthlit parts must be seen
@@ -806,12 +818,7 @@ impl Visibility {
             }
             for b in &blockers[k] {
                 let o = &self.faces[b.face as usize];
-                let polys: &mut dyn Iterator<Item = &[DVec3]> = if o.outline.is_empty() {
-                    &mut o.pieces.iter().map(|t| &t[..])
-                } else {
-                    &mut std::iter::once(&o.outline[..])
-                };
-                for p in polys {
+                for p in o.polygons() {
                     // project each vertex along d onto the plane; h is its height above it
                     x.clip_in.clear();
                     x.clip_in.extend(p.iter().map(|y| project(*y)));
@@ -970,12 +977,15 @@ fn pieces_of(
 
 /// Sorts points and drops exact repeats (the corners that neighbouring triangles share).
 fn sort_dedup(points: &mut Vec<DVec3>) {
-    points.sort_by(|a, b| {
-        a.to_array()
-            .partial_cmp(&b.to_array())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
+    points.sort_by(position_order);
     points.dedup();
+}
+
+/// Points ordered by x, then y, then z: the order [`sort_dedup`] leaves, for bisection.
+fn position_order(a: &DVec3, b: &DVec3) -> std::cmp::Ordering {
+    a.to_array()
+        .partial_cmp(&b.to_array())
+        .unwrap_or(std::cmp::Ordering::Equal)
 }
 
 /// Does the sphere (c_o, r_o) meet the half-infinite cylinder swept by the sphere
@@ -1138,9 +1148,7 @@ mod tests {
     /// The box-wing with a finer dish, a feed box over the dish (in front of its lid) and
     /// a plate through the dish's rim (in front of the lid and inside its hull, and
     /// cutting the dish where the dish's section meets it).
-    fn cluttered_box_wing() -> Scene {
-        let text = include_str!("../../../scenes/box-wing.json");
-        let mut scene = Scene::from_json(text, &Limits::unlimited()).expect("scene");
+    fn cluttered_box_wing() -> crate::geometry::Mesh {
         let mut mesh = builtin::box_wing_with(8, 24, 1);
         builtin::push_box(
             &mut mesh,
@@ -1158,8 +1166,61 @@ mod tests {
             ],
             1,
         );
+        mesh
+    }
+
+    /// Adaptive visibility for `mesh` with the box-wing request's materials.
+    fn visibility_of(mesh: crate::geometry::Mesh) -> Visibility {
+        let text = include_str!("../../../scenes/box-wing.json");
+        let mut scene = Scene::from_json(text, &Limits::unlimited()).expect("scene");
         scene.mesh = mesh;
-        scene
+        let mut faces = Faces::build(&scene.mesh, true);
+        faces.sort_spatially();
+        Visibility::build(&scene, &faces, VisibilityMode::Adaptive)
+    }
+
+    /// `mesh` beside a plate (z = 0, x from 1.5 to 6, |y| < 3, 27 m²) that the mesh's
+    /// one part is cut by and cast whole on: the visibility, and the plate's face.
+    fn beside_plate(mut mesh: crate::geometry::Mesh) -> (Visibility, usize) {
+        builtin::push_quad(
+            &mut mesh,
+            [
+                DVec3::new(1.5, -3.0, 0.0),
+                DVec3::new(6.0, -3.0, 0.0),
+                DVec3::new(6.0, 3.0, 0.0),
+                DVec3::new(1.5, 3.0, 0.0),
+            ],
+            0,
+        );
+        let vis = visibility_of(mesh);
+        let plate = vis
+            .faces
+            .iter()
+            .position(|g| g.area > 20.0)
+            .expect("the plate");
+        assert!(
+            vis.faces[plate].part_shadows.iter().any(|p| p.cut),
+            "cast whole"
+        );
+        (vis, plate)
+    }
+
+    /// The plate's sunlit area seen from straight above (m²), with parts cast whole and
+    /// face by face.
+    fn plate_lit(vis: &Visibility, plate: usize, sun: DVec3) -> (f64, f64) {
+        let dirs = Uncertain {
+            view: DVec3::Z,
+            sun: Some(sun),
+            earth: None,
+        };
+        let mut cache = Cache::default();
+        cache.reset();
+        let (a, _, rays) = vis.visible_area(&mut cache, plate, 1.0, &dirs, 1e-6);
+        let (b, _) = vis
+            .face_by_face(&mut cache, plate, 1.0, &dirs)
+            .expect("clipped");
+        assert_eq!(rays, 0);
+        (a, b)
     }
 
     #[test]
@@ -1170,10 +1231,7 @@ mod tests {
         // blocker face clipped on its own. Both are exact up to the clipper's plane
         // tolerance (1e-9 of the object's radius), so they must agree to ~1e-9 of a face's
         // area; 1e-7 of the largest face leaves room for slivers along shadow edges.
-        let scene = cluttered_box_wing();
-        let mut faces = Faces::build(&scene.mesh, true);
-        faces.sort_spatially();
-        let vis = Visibility::build(&scene, &faces, VisibilityMode::Adaptive);
+        let vis = visibility_of(cluttered_box_wing());
         let cut = vis
             .faces
             .iter()
@@ -1258,7 +1316,6 @@ mod tests {
             overruled * 100 < compared,
             "{overruled} of {compared} overruled"
         );
-        eprintln!("{compared} faces compared, {shadowed} shadowed, {dark} dark, {overruled} decided by rays");
     }
 
     /// Seen-and-sunlit and seen-and-earthlit areas (m²) of a face from `n` random points
@@ -1267,8 +1324,7 @@ mod tests {
         let g = &vis.faces[face];
         let normal = g.normal * side;
         let earth = dirs.earth.filter(|e| normal.dot(*e) > 1e-3);
-        let area = |t: &[DVec3; 3]| 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
-        let total: f64 = g.pieces.iter().map(area).sum();
+        let total = g.pieces_area;
         let mut rnd = crate::test_rng(17 + face as u64);
         let (mut sun, mut earthlit) = (0usize, 0usize);
         for _ in 0..n {
@@ -1277,7 +1333,7 @@ mod tests {
                 .pieces
                 .iter()
                 .find(|t| {
-                    pick -= area(t);
+                    pick -= triangle_area(t);
                     pick <= 0.0
                 })
                 .unwrap_or(&g.pieces[0]);
@@ -1308,48 +1364,13 @@ mod tests {
         // face (the same polyhedron: to 1e-9 of the plate) and against a true sphere's
         // shadow integrated on a grid (the polyhedron's radius falls short by up to 0.4 %
         // between its vertices, so within 2 %).
-        let text = include_str!("../../../scenes/box-wing.json");
-        let mut scene = Scene::from_json(text, &Limits::unlimited()).expect("scene");
         let mut mesh = builtin::icosphere(3, 1.0);
         mesh.material_ids = vec![0; mesh.triangles.len()];
-        builtin::push_quad(
-            &mut mesh,
-            [
-                DVec3::new(1.5, -3.0, 0.0),
-                DVec3::new(6.0, -3.0, 0.0),
-                DVec3::new(6.0, 3.0, 0.0),
-                DVec3::new(1.5, 3.0, 0.0),
-            ],
-            0,
-        );
-        scene.mesh = mesh;
-        let mut faces = Faces::build(&scene.mesh, true);
-        faces.sort_spatially();
-        let vis = Visibility::build(&scene, &faces, VisibilityMode::Adaptive);
-        let plate = vis
-            .faces
-            .iter()
-            .position(|g| g.area > 20.0)
-            .expect("the plate");
-        assert!(
-            vis.faces[plate].part_shadows.iter().any(|p| p.cut),
-            "cast whole"
-        );
-        let mut cache = Cache::default();
+        let (vis, plate) = beside_plate(mesh);
         for deg in [60.0f64, 66.0, 72.0, 78.0, 85.0] {
             let t = deg.to_radians();
             let sun = DVec3::new(-t.sin(), 0.0, t.cos());
-            let dirs = Uncertain {
-                view: DVec3::Z,
-                sun: Some(sun),
-                earth: None,
-            };
-            cache.reset();
-            let (a, _, rays) = vis.visible_area(&mut cache, plate, 1.0, &dirs, 1e-6);
-            let (b, _) = vis
-                .face_by_face(&mut cache, plate, 1.0, &dirs)
-                .expect("clipped");
-            assert_eq!(rays, 0);
+            let (a, b) = plate_lit(&vis, plate, sun);
             assert!((a - b).abs() <= 1e-9 * 27.0, "sun at {deg}°: {a} vs {b}");
             // a true sphere's shadow: points whose ray towards the Sun passes within 1 of
             // the centre ahead of them
@@ -1387,8 +1408,6 @@ mod tests {
         // vertices lie far from the plane, so the cut shadow's corners near the plate are
         // where its side edges cross the plane. Against clipping face by face, to 1e-9 of
         // the plate, for a Sun sweeping down towards the horizon beyond it.
-        let text = include_str!("../../../scenes/box-wing.json");
-        let mut scene = Scene::from_json(text, &Limits::unlimited()).expect("scene");
         let mut mesh = crate::geometry::Mesh::default();
         let k = 20;
         let ring = |j: usize, z: f64| {
@@ -1410,44 +1429,11 @@ mod tests {
                 mesh.material_ids.push(0);
             }
         }
-        builtin::push_quad(
-            &mut mesh,
-            [
-                DVec3::new(1.5, -3.0, 0.0),
-                DVec3::new(6.0, -3.0, 0.0),
-                DVec3::new(6.0, 3.0, 0.0),
-                DVec3::new(1.5, 3.0, 0.0),
-            ],
-            0,
-        );
-        scene.mesh = mesh;
-        let mut faces = Faces::build(&scene.mesh, true);
-        faces.sort_spatially();
-        let vis = Visibility::build(&scene, &faces, VisibilityMode::Adaptive);
-        let plate = vis
-            .faces
-            .iter()
-            .position(|g| g.area > 20.0)
-            .expect("the plate");
-        assert!(
-            vis.faces[plate].part_shadows.iter().any(|p| p.cut),
-            "cast whole"
-        );
-        let mut cache = Cache::default();
+        let (vis, plate) = beside_plate(mesh);
         for deg in [60.0f64, 66.0, 72.0, 78.0, 85.0] {
             let t = deg.to_radians();
             let sun = DVec3::new(-t.sin(), 0.1, t.cos()).normalize();
-            let dirs = Uncertain {
-                view: DVec3::Z,
-                sun: Some(sun),
-                earth: None,
-            };
-            cache.reset();
-            let (a, _, rays) = vis.visible_area(&mut cache, plate, 1.0, &dirs, 1e-6);
-            let (b, _) = vis
-                .face_by_face(&mut cache, plate, 1.0, &dirs)
-                .expect("clipped");
-            assert_eq!(rays, 0);
+            let (a, b) = plate_lit(&vis, plate, sun);
             assert!(
                 b < 27.0 - 0.2,
                 "sun at {deg}°: the shadow must fall on the plate"

@@ -39,17 +39,7 @@ pub(super) struct PartShadow {
 pub(super) fn spheres(parts: &[ConvexPart]) -> Vec<(DVec3, f64)> {
     parts
         .iter()
-        .map(|p| {
-            let (lo, hi) = p.vertices.iter().fold(
-                (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-                |(lo, hi), v| (lo.min(*v), hi.max(*v)),
-            );
-            let c = 0.5 * (lo + hi);
-            (
-                c,
-                p.vertices.iter().map(|v| v.distance(c)).fold(0.0, f64::max),
-            )
-        })
+        .map(|p| crate::geometry::mesh::bounding_sphere(&p.vertices))
         .collect()
 }
 
@@ -105,14 +95,15 @@ pub(super) fn part_shadows(
         .map(|p| {
             p.faces
                 .iter()
-                .map(|&f| polygons(&geoms[f as usize]).map(<[_]>::len).sum::<usize>())
+                .map(|&f| geoms[f as usize].polygons().map(<[_]>::len).sum::<usize>())
                 .sum()
         })
         .collect();
+    let casts_cut = |k: u32| parts[k as usize].faces.len() >= CUT_MIN_FACES;
     let cut_work: usize = heights
         .iter()
         .flatten()
-        .filter(|&&(_, lo, hi)| lo < -tol && hi > tol)
+        .filter(|&&(k, lo, hi)| lo < -tol && hi > tol && casts_cut(k))
         .map(|&(k, _, _)| edges[k as usize])
         .sum();
     let cuts = cut_work <= CUT_WORK_LIMIT;
@@ -129,7 +120,7 @@ pub(super) fn part_shadows(
                     if hi <= tol && lo < -tol {
                         return Some(whole(k, [false, true], [true, false]));
                     }
-                    if !(cuts && lo < -tol && hi > tol && part.faces.len() >= CUT_MIN_FACES) {
+                    if !(cuts && lo < -tol && hi > tol && casts_cut(k)) {
                         return None; // in the face's plane, too few faces, or too much work
                     }
                     let crossings = crossings(g, part, geoms, tol);
@@ -159,24 +150,12 @@ fn whole(part: u32, sides: [bool; 2], behind: [bool; 2]) -> PartShadow {
     }
 }
 
-/// The convex polygons a face is made of: its outline, or its triangles.
-fn polygons(g: &FaceGeom) -> impl Iterator<Item = &[DVec3]> {
-    let outline = (!g.outline.is_empty()).then_some(&g.outline[..]);
-    let pieces = g
-        .outline
-        .is_empty()
-        .then_some(&g.pieces[..])
-        .into_iter()
-        .flatten();
-    outline.into_iter().chain(pieces.map(|t| &t[..]))
-}
-
 /// Points where the edges of `part`'s faces cross the plane of `g`, m.
 fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> Vec<DVec3> {
     let h = |p: DVec3| g.normal.dot(p - g.centroid);
     let mut out = Vec::new();
     for &f in &part.faces {
-        for poly in polygons(&geoms[f as usize]) {
+        for poly in geoms[f as usize].polygons() {
             for (i, &a) in poly.iter().enumerate() {
                 let b = poly[(i + 1) % poly.len()];
                 let (ha, hb) = (h(a), h(b));
@@ -204,16 +183,16 @@ fn section_meets_face(g: &FaceGeom, part: &ConvexPart, crossings: &[DVec3], tol:
     let points: Vec<DVec2> = crossings.iter().chain(on_plane).map(plane).collect();
     let (mut order, mut section) = (Vec::new(), Vec::new());
     convex_hull(&points, &mut order, &mut section);
+    if section.len() < 3 {
+        return true; // a sliver of a cut, from rounding: not worth proving
+    }
     let mut region = Region::default();
     region.reset(g.radius);
     let mut poly = Vec::new();
-    for p in polygons(g) {
+    for p in g.polygons() {
         poly.clear();
         poly.extend(p.iter().map(plane));
         region.add_convex(&poly);
-    }
-    if section.len() < 3 {
-        return true; // a sliver of a cut, from rounding: not worth proving
     }
     region.intersect_convex(&section);
     region.area() > tol * g.radius
@@ -288,11 +267,7 @@ pub(super) fn normal_cones(
         .map(|part| {
             let index = |p: &DVec3| {
                 part.vertices
-                    .binary_search_by(|v| {
-                        v.to_array()
-                            .partial_cmp(&p.to_array())
-                            .unwrap_or(std::cmp::Ordering::Equal)
-                    })
+                    .binary_search_by(|v| super::position_order(v, p))
                     .ok()
             };
             let mut normals: Vec<Vec<DVec3>> = vec![Vec::new(); part.vertices.len()];

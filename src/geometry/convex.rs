@@ -134,8 +134,9 @@ pub struct Lid {
     centre: glam::DVec2,
     inner: f64,
     outer: f64,
-    /// The corners' angles about `centre`, increasing (unwrapped), rad: the edge a ray
-    /// from the centre leaves through is found by bisection.
+    /// The corners' pseudo-angles about `centre` ([`pseudo_angle`]), increasing
+    /// (unwrapped by 4 a turn): the edge a ray from the centre leaves through is found by
+    /// bisection.
     angles: Vec<f64>,
 }
 
@@ -165,15 +166,13 @@ impl Lid {
     /// The edge (index of its first corner) that the ray from the centre through `q`
     /// (outline coordinates) leaves the outline by.
     fn sector(&self, q: glam::DVec2) -> usize {
-        use std::f64::consts::TAU;
-        let r = q - self.centre;
-        let mut phi = r.y.atan2(r.x);
+        let mut phi = pseudo_angle(q - self.centre);
         let start = self.angles[0];
         while phi < start {
-            phi += TAU;
+            phi += TURN;
         }
-        while phi >= start + TAU {
-            phi -= TAU;
+        while phi >= start + TURN {
+            phi -= TURN;
         }
         self.angles.partition_point(|&a| a <= phi).saturating_sub(1)
     }
@@ -504,13 +503,10 @@ impl Lid {
             .iter()
             .map(|p| p.distance(centre))
             .fold(0.0, f64::max);
-        let mut angles: Vec<f64> = outline
-            .iter()
-            .map(|p| (p.y - centre.y).atan2(p.x - centre.x))
-            .collect();
+        let mut angles: Vec<f64> = outline.iter().map(|p| pseudo_angle(*p - centre)).collect();
         for i in 1..angles.len() {
             while angles[i] < angles[i - 1] {
-                angles[i] += std::f64::consts::TAU;
+                angles[i] += TURN;
             }
         }
         Lid {
@@ -526,6 +522,28 @@ impl Lid {
             inner: inner * (1.0 - 1e-9),
             outer,
         }
+    }
+}
+
+/// A full turn in [`pseudo_angle`]'s units.
+const TURN: f64 = 4.0;
+
+/// A number in [0, 4) that increases with the angle of `r` from the x axis
+/// (counter-clockwise) as atan2 does, one unit per quadrant: ordering by it is ordering by
+/// angle, for a division instead of an arctangent. 0 for the zero vector.
+fn pseudo_angle(r: glam::DVec2) -> f64 {
+    let (x, y) = (r.x, r.y);
+    let quarter = |a: f64, b: f64| if a + b > 0.0 { b / (a + b) } else { 0.0 };
+    if y >= 0.0 {
+        if x >= 0.0 {
+            quarter(x, y)
+        } else {
+            1.0 + quarter(y, -x)
+        }
+    } else if x < 0.0 {
+        2.0 + quarter(-x, -y)
+    } else {
+        3.0 + quarter(-y, x)
     }
 }
 
@@ -564,6 +582,39 @@ mod tests {
             let (a, b) = lid.edge(i);
             (b - a).perp_dot(q - a) >= 0.0
         })
+    }
+
+    #[test]
+    fn pseudo_angle_orders_as_the_angle_does() {
+        // against atan2 over random vectors and the axes (where quadrants meet): exact
+        // comparisons, since sectors are found by bisection on these keys
+        let mut rnd = crate::test_rng(5);
+        let angle = |r: glam::DVec2| r.y.atan2(r.x).rem_euclid(std::f64::consts::TAU);
+        let mut v: Vec<glam::DVec2> = (0..2000)
+            .map(|_| glam::DVec2::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0))
+            .collect();
+        v.extend(
+            [
+                (1.0, 0.0),
+                (0.0, 1.0),
+                (-1.0, 0.0),
+                (0.0, -1.0),
+                (1.0, -1e-12),
+            ]
+            .map(|(x, y)| glam::DVec2::new(x, y)),
+        );
+        v.sort_by(|a, b| angle(*a).total_cmp(&angle(*b)));
+        for w in v.windows(2) {
+            assert!(
+                pseudo_angle(w[0]) <= pseudo_angle(w[1]),
+                "{} {}",
+                w[0],
+                w[1]
+            );
+            assert!((0.0..TURN).contains(&pseudo_angle(w[0])));
+        }
+        assert_eq!(pseudo_angle(glam::DVec2::new(0.0, 1.0)), 1.0);
+        assert_eq!(pseudo_angle(glam::DVec2::new(-1.0, 0.0)), 2.0);
     }
 
     #[test]

@@ -233,6 +233,7 @@ mod tests {
             vertices: Vec::new(),
             part_shadows: Vec::new(),
             lid_side: [false; 2],
+            lid_only: [false; 2],
             own_outside: [false; 2],
             patch: 0,
         }

@@ -26,7 +26,7 @@
 //!   it: their faces are not searched at all;
 //! - a face of a convex cap, on its inner side, sees out only through the cap's lid
 //!   (its rim): per direction the lid passes all of it, none of it, or it is clipped to
-//!   the lid projected back onto it; only faces in front of the lid or inside the cap's
+//!   the lid projected back onto it (decided for many faces at once, [`caps`]); only faces in front of the lid or inside the cap's
 //!   hull ([`parts::lid_blockers`]) are searched besides.
 //!
 //! Faces nearly edge-on to a direction (the projection stretches without bound) or cut
@@ -38,6 +38,7 @@
 //! and f32 rays at grazing incidence on a neighbour miss some hits (measured on the
 //! box-wing's dish, checked against f64 intersection).
 
+mod caps;
 mod grid;
 mod parts;
 mod sampler;
@@ -47,6 +48,7 @@ use crate::geometry::convex::{convex_parts, ConvexPart};
 use crate::geometry::polygon::{convex_hull, Region};
 use crate::geometry::Faces;
 use crate::scene::Scene;
+use caps::{CapStates, CapTree, LidState};
 use glam::{DVec2, DVec3};
 use grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
 use parts::{PartShadow, Silhouette};
@@ -99,6 +101,9 @@ struct FaceGeom {
     /// Per side (front, back): the face belongs to a cap with a lid and that side faces
     /// into the cap.
     lid_side: [bool; 2],
+    /// Per side: the lid alone decides what the face sees along any direction (it faces
+    /// into a cap that nothing else can reach into, and no part is cast whole on it).
+    lid_only: [bool; 2],
     /// Per side: the face belongs to a convex part and that side faces away from it, so
     /// no face of the part can block it.
     own_outside: [bool; 2],
@@ -171,6 +176,10 @@ pub struct Visibility {
     lid_blockers: Vec<Option<Vec<u32>>>,
     /// Per patch: how many of its faces each part has ([`parts::patch_parts`]).
     patch_parts: Vec<Vec<(u32, u32)>>,
+    /// Per part: for a cap, its faces in a ball tree ([`caps`]).
+    cap_trees: Vec<Option<CapTree>>,
+    /// Per face of a cap: its place in the cap's tree order.
+    cap_slot: Vec<u32>,
 }
 
 /// Per-thread cache of patch-level results, valid within one epoch.
@@ -187,6 +196,8 @@ pub struct Cache {
     grids: [[FaceGrid; 2]; 3],
     /// Per face: the query that last returned it (deduplicates multi-cell faces).
     stamp: Stamp,
+    /// Per direction, per part: a cap's face states along it (built on first use).
+    cap_states: [Vec<CapStates>; 3],
 }
 
 /// Buffers for [`Visibility::exact_area`].
@@ -229,6 +240,9 @@ impl Cache {
             p.dir = None;
         }
         for s in self.exact.silhouettes.iter_mut().flatten() {
+            s.dir = None;
+        }
+        for s in self.cap_states.iter_mut().flatten() {
             s.dir = None;
         }
     }
@@ -285,6 +299,7 @@ impl Visibility {
                     outline,
                     part_shadows: Vec::new(),
                     lid_side: [false; 2],
+                    lid_only: [false; 2],
                     own_outside: [false; 2],
                     patch: (i / per_patch) as u32,
                 }
@@ -358,6 +373,28 @@ impl Visibility {
             }
         }
         let lid_blockers = parts::lid_blockers(&geoms, &parts, &part_of, tol);
+        for g in &mut geoms {
+            for s in 0..2 {
+                g.lid_only[s] = g.lid_side[s] && !g.part_shadows.iter().any(|p| p.sides[s]);
+            }
+        }
+        for (g, &k) in geoms.iter_mut().zip(&part_of) {
+            let reachable =
+                k == NO_PART || !matches!(&lid_blockers[k as usize], Some(b) if b.is_empty());
+            if reachable {
+                g.lid_only = [false; 2];
+            }
+        }
+        let cap_trees: Vec<Option<CapTree>> = parts
+            .iter()
+            .map(|p| p.lid.is_some().then(|| CapTree::new(p, &geoms)))
+            .collect();
+        let mut cap_slot = vec![0; geoms.len()];
+        for tree in cap_trees.iter().flatten() {
+            for (i, &f) in tree.order.iter().enumerate() {
+                cap_slot[f as usize] = i as u32;
+            }
+        }
         let patch_parts = parts::patch_parts(&patches, &part_of);
         Visibility {
             mode,
@@ -367,6 +404,8 @@ impl Visibility {
             part_cones,
             lid_blockers,
             patch_parts,
+            cap_trees,
+            cap_slot,
             faces: geoms,
             patches,
             candidates,
@@ -439,6 +478,19 @@ impl Visibility {
     /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on
     /// side `side` (+1 front, −1 back); plus the number of rays cast. `budget` (m²) is the
     /// area of this face whose misclassification the tolerance allows.
+    pub fn category(&self, face: usize, side: f64) -> usize {
+        let f = &self.faces[face];
+        let si = usize::from(side < 0.0);
+        if f.lid_side[si] {
+            0
+        } else if self.part_of[face] != NO_PART
+            && self.parts[self.part_of[face] as usize].lid.is_some()
+        {
+            1
+        } else {
+            2
+        }
+    }
     pub fn visible_area(
         &self,
         cache: &mut Cache,
@@ -453,6 +505,34 @@ impl Visibility {
         // the Earth light it: no meaningful ray then; count it as unshadowed.
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
         let directions = [Some(dirs.view), dirs.sun, earth];
+        if self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[usize::from(side < 0.0)]
+        {
+            // a cap's inner face that nothing but its own cap can shadow: the lid decides
+            let cap = self.part_of[face];
+            let lid = self.parts[cap as usize]
+                .lid
+                .as_ref()
+                .expect("caps have lids");
+            let mut lids = [LidState::Open; 3];
+            for (k, d) in directions.iter().enumerate() {
+                if let Some(d) = *d {
+                    lids[k] = self.lid_state(&mut cache.cap_states[k], lid, cap, face, d);
+                    if k == 0 && lids[0] == LidState::Closed {
+                        return (0.0, 0.0, 0);
+                    }
+                }
+            }
+            if !lids.contains(&LidState::Clip) {
+                let lit = |l: LidState| {
+                    if l == LidState::Closed {
+                        0.0
+                    } else {
+                        f.pieces_area
+                    }
+                };
+                return (lit(lids[1]), lit(lids[2]), 0);
+            }
+        }
         // A shadow edge crosses about perimeter/h leaves of size h, each misjudged by a
         // fraction of its area ~h²: the error ~ perimeter·h·c falls like h, so leaves stop
         // at h = K·budget/√A (perimeter ≈ 4√A) and the error falls like the tolerance, not
@@ -520,6 +600,25 @@ impl Visibility {
         (s.a_sun, s.a_earth, s.rays)
     }
 
+    /// The state of cap `cap`'s lid for its face `face` along `d`, from the cap's tree
+    /// walked once per epoch and direction (`states`: the cache's, for this direction).
+    fn lid_state(
+        &self,
+        states: &mut Vec<CapStates>,
+        lid: &crate::geometry::convex::Lid,
+        cap: u32,
+        face: usize,
+        d: DVec3,
+    ) -> LidState {
+        if states.len() < self.parts.len() {
+            states.resize_with(self.parts.len(), Default::default);
+        }
+        let tree = self.cap_trees[cap as usize]
+            .as_ref()
+            .expect("caps have trees");
+        states[cap as usize].along(tree, lid, d, self.tol)[self.cap_slot[face] as usize]
+    }
+
     /// Patch- then face-level proofs; what survives are the possible blockers of `face`
     /// (on side `side`) along each direction, into `out`. With `whole` (for exact
     /// clipping), parts that shadow the face whole go to `cache.exact.part_hits` instead of
@@ -580,14 +679,7 @@ impl Visibility {
                     .lid
                     .as_ref()
                     .expect("caps have lids");
-                lids[k] = match lid.classify(f.centroid, f.radius, d, self.tol) {
-                    Some(true) => LidState::Open,
-                    Some(false) => LidState::Closed,
-                    None if f.vertices.iter().all(|v| lid.passes(*v, d, self.tol)) => {
-                        LidState::Open
-                    }
-                    None => LidState::Clip,
-                };
+                lids[k] = self.lid_state(&mut cache.cap_states[k], lid, cap, face, d);
                 if lids[k] == LidState::Closed {
                     continue; // dark along d whatever else lies there
                 }
@@ -665,18 +757,6 @@ impl Visibility {
         }
         lids
     }
-}
-
-/// How a face on the inner side of a convex cap sees out through the cap's lid along a
-/// direction (always `Open` for other faces).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum LidState {
-    /// Every ray from the face leaves through the lid.
-    Open,
-    /// Some do: the face is clipped to the lid projected back onto it.
-    Clip,
-    /// None does: the cap itself hides the whole face.
-    Closed,
 }
 
 /// Above this many convex pieces per face, shadows are sampled instead of clipped (the
@@ -1221,6 +1301,75 @@ mod tests {
             .expect("clipped");
         assert_eq!(rays, 0);
         (a, b)
+    }
+
+    #[test]
+    fn a_caps_tree_decides_its_faces_as_rays_from_them_do() {
+        // The tree's verdicts (balls decided whole, then faces, then shared vertices)
+        // against rays: from points of each face, along random directions, against the
+        // dish alone. Open: every ray leaves; closed: none does. Points are inset by 1 %
+        // towards the centroid and directions kept 0.05 off the lid's plane, so f32 rays
+        // are not asked about rays grazing the rim or the face. Also: the tree gives each face the
+        // verdict that testing the face alone gives (its ball, then its vertices).
+        let mesh = builtin::box_wing_with(16, 48, 0);
+        let vis = visibility_of(mesh.clone());
+        let cap = vis
+            .parts
+            .iter()
+            .position(|p| p.lid.is_some())
+            .expect("the dish") as u32;
+        let lid = vis.parts[cap as usize].lid.as_ref().expect("lid");
+        let tree = vis.cap_trees[cap as usize].as_ref().expect("tree");
+        let mut dish = crate::geometry::Mesh::default();
+        dish.vertices = mesh.vertices.clone();
+        dish.triangles = mesh
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&v| mesh.vertices[v as usize].z > 1.2 + 1e-9))
+            .copied()
+            .collect();
+        dish.material_ids = vec![0; dish.triangles.len()];
+        let rays = Occluder::build(&dish);
+        let mut rnd = crate::test_rng(44);
+        let mut states = CapStates::default();
+        let mut seen = [0usize; 3];
+        for _ in 0..60 {
+            let d = loop {
+                let d = DVec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
+                if d.length() > 0.1 && d.length() < 1.0 && d.normalize().dot(lid.normal) > 0.05 {
+                    break d.normalize();
+                }
+            };
+            let verdicts = states.along(tree, lid, d, vis.tol).to_vec();
+            for (&face, &state) in tree.order.iter().zip(&verdicts) {
+                let f = &vis.faces[face as usize];
+                let alone = match lid.classify(f.centroid, f.radius, d, vis.tol) {
+                    Some(true) => LidState::Open,
+                    Some(false) => LidState::Closed,
+                    None if f.vertices.iter().all(|v| lid.passes(*v, d, vis.tol)) => LidState::Open,
+                    None => LidState::Clip,
+                };
+                assert_eq!(state, alone, "face {face} along {d}");
+                seen[state as usize] += 1;
+                if state == LidState::Clip {
+                    continue;
+                }
+                let inner = if f.lid_side[0] { f.normal } else { -f.normal };
+                if inner.dot(d) < 0.05 {
+                    continue; // along d the face's inner side sees nothing (nor is asked)
+                }
+                for v in &f.vertices {
+                    let p = *v + (f.centroid - *v) * 0.01;
+                    assert_eq!(
+                        rays.is_clear(p, inner, d),
+                        state == LidState::Open,
+                        "face {face} ({state:?}) point {p} along {d}"
+                    );
+                }
+            }
+        }
+        // every verdict was exercised
+        assert!(seen.iter().all(|&n| n > 100), "{seen:?}");
     }
 
     #[test]

@@ -177,6 +177,38 @@ impl Lid {
         self.angles.partition_point(|&a| a <= phi).saturating_sub(1)
     }
 
+    /// When the points `poly` (outline coordinates) lie within a wedge about the centre of
+    /// less than half a turn: the sectors ([`Lid::sector`]) of its first and last corner
+    /// counter-clockwise. `None` when they spread wider, or a point is at the centre.
+    fn wedge(&self, poly: &[glam::DVec2]) -> Option<(usize, usize)> {
+        let at = |q: glam::DVec2| {
+            let r = q - self.centre;
+            (r.length_squared() > 1e-24 * self.outer * self.outer).then(|| pseudo_angle(r))
+        };
+        let a0 = at(*poly.first()?)?;
+        let (mut lo, mut hi) = ((0.0, 0), (0.0, 0));
+        for (i, q) in poly.iter().enumerate().skip(1) {
+            // angle from the first point, within half a turn either way
+            let mut t = at(*q)? - a0;
+            if t > 0.5 * TURN {
+                t -= TURN;
+            } else if t <= -0.5 * TURN {
+                t += TURN;
+            }
+            if t < lo.0 {
+                lo = (t, i);
+            }
+            if t > hi.0 {
+                hi = (t, i);
+            }
+        }
+        // a margin below half a turn: the wrap above must not be in doubt
+        if hi.0 - lo.0 >= 0.45 * TURN {
+            return None;
+        }
+        Some((self.sector(poly[lo.1]), self.sector(poly[hi.1])))
+    }
+
     /// Edge `i` (< the number of corners): its first and second corner.
     fn edge(&self, i: usize) -> (glam::DVec2, glam::DVec2) {
         let next = if i + 1 == self.outline.len() {
@@ -217,32 +249,49 @@ impl Lid {
             (b - a).perp_dot(q - a) < 0.0
         };
         edges.clear();
-        for &q in poly.iter() {
-            if q.distance(self.centre) <= self.inner {
-                continue;
-            }
-            let j = self.sector(q);
-            if !outside(j, q) {
-                continue;
-            }
-            edges.push(j);
-            for step in 1..n {
-                let i = if j + step >= n {
-                    j + step - n
-                } else {
-                    j + step
-                };
-                if !outside(i, q) {
+        if let Some((first, last)) = self.wedge(poly) {
+            // The polygon lies in a wedge about the centre of less than half a turn, where
+            // the outline is bounded by the edges from the sector of its first corner to
+            // that of its last: only those can cut it (a small face near the rim meets one
+            // or two, where a corner far outside lies outside of many edges).
+            let mut i = first;
+            loop {
+                if poly.iter().any(|&q| outside(i, q)) {
+                    edges.push(i);
+                }
+                if i == last {
                     break;
                 }
-                edges.push(i);
+                i = if i + 1 == n { 0 } else { i + 1 };
             }
-            for step in 1..n {
-                let i = if j >= step { j - step } else { j + n - step };
-                if !outside(i, q) {
-                    break;
+        } else {
+            for &q in poly.iter() {
+                if q.distance(self.centre) <= self.inner {
+                    continue;
                 }
-                edges.push(i);
+                let j = self.sector(q);
+                if !outside(j, q) {
+                    continue;
+                }
+                edges.push(j);
+                for step in 1..n {
+                    let i = if j + step >= n {
+                        j + step - n
+                    } else {
+                        j + step
+                    };
+                    if !outside(i, q) {
+                        break;
+                    }
+                    edges.push(i);
+                }
+                for step in 1..n {
+                    let i = if j >= step { j - step } else { j + n - step };
+                    if !outside(i, q) {
+                        break;
+                    }
+                    edges.push(i);
+                }
             }
         }
         edges.sort_unstable();
@@ -626,6 +675,7 @@ mod tests {
         for lid in lids() {
             let below = lid.origin - lid.normal * 0.1;
             let (mut inside_n, mut outside_n, mut decided) = (0, 0, 0);
+            let (mut wedged, mut wide) = (0, 0);
             for _ in 0..4000 {
                 let d = (lid.normal * (0.2 + rnd())
                     + lid.u * (2.0 * rnd() - 1.0)
@@ -659,9 +709,16 @@ mod tests {
                     }
                 }
                 // a triangle about q, clipped: its area against the plain clip by all edges
+                // (now and then a large one, wider than a wedge of half a turn)
+                let size = if rnd() < 0.25 { 3.0 } else { 0.6 };
                 let tri: Vec<glam::DVec2> = (0..3)
-                    .map(|_| q + glam::DVec2::new(rnd() - 0.5, rnd() - 0.5) * 0.6)
+                    .map(|_| q + glam::DVec2::new(rnd() - 0.5, rnd() - 0.5) * size)
                     .collect();
+                if lid.wedge(&tri).is_some() {
+                    wedged += 1;
+                } else {
+                    wide += 1;
+                }
                 let (mut poly, mut edges, mut scratch) = (tri.clone(), Vec::new(), Vec::new());
                 lid.clip(&mut poly, &mut edges, &mut scratch);
                 let mut region = crate::geometry::polygon::Region::default();
@@ -679,6 +736,7 @@ mod tests {
                 inside_n > 500 && outside_n > 500 && decided > 1000,
                 "{inside_n} {outside_n} {decided}"
             );
+            assert!(wedged > 1000 && wide > 200, "{wedged} {wide}");
         }
     }
 

@@ -51,7 +51,7 @@ use crate::scene::Scene;
 use caps::{CapStates, CapTree, LidState};
 use glam::{DVec2, DVec3};
 use grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
-use parts::{PartShadow, Silhouette};
+use parts::{PartShadow, PatchParts, Silhouette};
 use rayon::prelude::*;
 use sampler::Sampler;
 use std::ops::Range;
@@ -174,8 +174,8 @@ pub struct Visibility {
     part_cones: Vec<Vec<[f64; 4]>>,
     /// Per cap: the faces a ray leaving it from inside can meet ([`parts::lid_blockers`]).
     lid_blockers: Vec<Option<Vec<u32>>>,
-    /// Per patch: how many of its faces each part has ([`parts::patch_parts`]).
-    patch_parts: Vec<Vec<(u32, u32)>>,
+    /// Per patch: its faces grouped by part.
+    patch_parts: PatchParts,
     /// Per part: for a cap, its faces in a ball tree ([`caps`]).
     cap_trees: Vec<Option<CapTree>>,
     /// Per face of a cap: its place in the cap's tree order.
@@ -395,7 +395,7 @@ impl Visibility {
                 cap_slot[f as usize] = i as u32;
             }
         }
-        let patch_parts = parts::patch_parts(&patches, &part_of);
+        let patch_parts = PatchParts::new(&patches, &part_of);
         Visibility {
             mode,
             occluder,
@@ -713,14 +713,7 @@ impl Visibility {
             }
             let flagged = cache.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
             // faces to test: those of the flagged patches but the parts left out
-            let to_test = |p: u32| {
-                let skipped: u32 = self.patch_parts[p as usize]
-                    .iter()
-                    .filter(|c| left_out(c.0))
-                    .map(|c| c.1)
-                    .sum();
-                self.patches[p as usize].faces.len() - skipped as usize
-            };
+            let to_test = |p: u32| self.patch_parts.count(p, left_out);
             let count: usize = flagged.iter().map(|&p| to_test(p)).sum();
             if count == 0 {
                 continue;
@@ -728,11 +721,6 @@ impl Visibility {
             project(&mut cache.projections[k]);
             let proj = &cache.projections[k];
             let out = &mut out[k];
-            let mut consider = |g: usize| {
-                if !left_out(self.part_of[g]) {
-                    self.consider_blocker(face, n, g, proj, out)
-                }
-            };
             if count > GRID_MIN_FACES {
                 // many faces to test (a finely meshed curved part): ask the epoch's grid of
                 // faces seen along d for those whose shadow can fall on this one
@@ -743,14 +731,20 @@ impl Visibility {
                 }
                 let at = &proj.at[face];
                 let centre = DVec2::new(at[0], at[1]);
-                grid.query(centre, at[3], &mut cache.stamp, |g| consider(g as usize));
+                grid.query(centre, at[3], &mut cache.stamp, |g| {
+                    if !left_out(self.part_of[g as usize]) {
+                        self.consider_blocker(face, n, g as usize, proj, out)
+                    }
+                });
             } else {
                 for &p in flagged.iter() {
                     // the patch test was for the receiver's whole patch: this face may be
                     // out of reach
                     let pp = &self.patches[p as usize];
-                    if to_test(p) > 0 && reaches(f.centroid, f.radius, pp.centre, pp.radius, d) {
-                        pp.faces.clone().for_each(|g| consider(g as usize));
+                    if reaches(f.centroid, f.radius, pp.centre, pp.radius, d) {
+                        for g in self.patch_parts.faces(p, left_out) {
+                            self.consider_blocker(face, n, g as usize, proj, out);
+                        }
                     }
                 }
             }

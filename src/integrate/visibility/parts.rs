@@ -14,7 +14,7 @@
 //! A part cut by a face's plane is not used when it is a cap whose section by the plane
 //! overlaps the face: a point of the face inside the hull may see out through the lid.
 
-use super::{FaceGeom, NO_PART};
+use super::FaceGeom;
 use crate::geometry::convex::ConvexPart;
 use crate::geometry::polygon::{convex_hull, HullIndices, Region};
 use glam::{DVec2, DVec3};
@@ -358,24 +358,54 @@ impl Silhouette {
     }
 }
 
-/// Per patch: how many of its faces belong to each part (parts in order; faces of no
-/// part are not counted).
-pub(super) fn patch_parts(patches: &[super::Patch], part_of: &[u32]) -> Vec<Vec<(u32, u32)>> {
-    patches
-        .iter()
-        .map(|p| {
-            let mut counts: Vec<(u32, u32)> = Vec::new();
-            for f in p.faces.clone() {
-                let part = part_of[f as usize];
-                if part == NO_PART {
-                    continue;
-                }
-                match counts.binary_search_by_key(&part, |c| c.0) {
-                    Ok(i) => counts[i].1 += 1,
-                    Err(i) => counts.insert(i, (part, 1)),
+/// Every patch's faces grouped by part: `faces` holds them patch after patch, each
+/// patch's ordered by part (faces of no part last), and `runs[p]` lists patch p's groups
+/// as (part, range of `faces`), so a search can pass over the parts it leaves out whole.
+#[derive(Debug, Default)]
+pub(super) struct PatchParts {
+    pub(super) faces: Vec<u32>,
+    pub(super) runs: Vec<Vec<(u32, std::ops::Range<u32>)>>,
+}
+
+impl PatchParts {
+    pub(super) fn new(patches: &[super::Patch], part_of: &[u32]) -> PatchParts {
+        let mut out = PatchParts::default();
+        for p in patches {
+            let start = out.faces.len();
+            out.faces.extend(p.faces.clone());
+            // stable: faces keep their (spatial) order within a part
+            out.faces[start..].sort_by_key(|&f| part_of[f as usize]);
+            let mut runs: Vec<(u32, std::ops::Range<u32>)> = Vec::new();
+            for i in start..out.faces.len() {
+                let part = part_of[out.faces[i] as usize];
+                match runs.last_mut() {
+                    Some((q, r)) if *q == part => r.end = i as u32 + 1,
+                    _ => runs.push((part, i as u32..i as u32 + 1)),
                 }
             }
-            counts
-        })
-        .collect()
+            out.runs.push(runs);
+        }
+        out
+    }
+
+    /// Patch `p`'s faces outside the parts `left_out` says no to.
+    pub(super) fn faces<'a>(
+        &'a self,
+        p: u32,
+        left_out: impl Fn(u32) -> bool + 'a,
+    ) -> impl Iterator<Item = u32> + 'a {
+        self.runs[p as usize]
+            .iter()
+            .filter(move |(part, _)| !left_out(*part))
+            .flat_map(|(_, r)| self.faces[r.start as usize..r.end as usize].iter().copied())
+    }
+
+    /// How many faces [`PatchParts::faces`] gives.
+    pub(super) fn count(&self, p: u32, left_out: impl Fn(u32) -> bool) -> usize {
+        self.runs[p as usize]
+            .iter()
+            .filter(|(part, _)| !left_out(*part))
+            .map(|(_, r)| r.len())
+            .sum()
+    }
 }

@@ -188,6 +188,10 @@ pub struct Cache {
     key: Option<(u32, bool)>,
     /// Flagged occluder patches for view, sun, earth (None: not computed yet).
     flagged: [Option<Vec<u32>>; 3],
+    /// Per direction: of the flagged patches, those with faces to test when the parts in
+    /// a mask are left out, with their count — for the last mask asked (faces of a patch
+    /// mostly share theirs).
+    kept: [Option<Kept>; 3],
     exact: ExactScratch,
     /// Faces' bounding spheres seen along each direction (built on first use in an epoch).
     projections: [Projection; 3],
@@ -233,6 +237,7 @@ impl Cache {
     pub fn reset(&mut self) {
         self.key = None;
         self.flagged = [None, None, None];
+        self.kept = [None, None, None];
         for g in self.grids.iter_mut().flatten() {
             g.dir = None;
         }
@@ -640,6 +645,7 @@ impl Visibility {
         if cache.key != Some(key) {
             cache.key = Some(key);
             cache.flagged = [None, None, None];
+            cache.kept = [None, None, None];
         }
         cache.exact.part_hits.iter_mut().for_each(Vec::clear);
         let own_cap = (whole && self.clip && f.lid_side[side_index]).then(|| self.part_of[face]);
@@ -712,9 +718,28 @@ impl Visibility {
                 continue;
             }
             let flagged = cache.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
-            // faces to test: those of the flagged patches but the parts left out
-            let to_test = |p: u32| self.patch_parts.count(p, left_out);
-            let count: usize = flagged.iter().map(|&p| to_test(p)).sum();
+            // faces to test: those of the flagged patches but the parts left out (a mask
+            // says which when there are few parts)
+            let cached = self.parts.len() <= 64;
+            let kept = match &mut cache.kept[k] {
+                Some(kept) if cached && kept.mask == mask => kept,
+                slot => {
+                    let mut kept = Kept {
+                        mask,
+                        patches: Vec::new(),
+                        count: 0,
+                    };
+                    for &p in flagged.iter() {
+                        let n = self.patch_parts.count(p, left_out);
+                        if n > 0 {
+                            kept.patches.push(p);
+                            kept.count += n;
+                        }
+                    }
+                    slot.insert(kept)
+                }
+            };
+            let count = kept.count;
             if count == 0 {
                 continue;
             }
@@ -737,7 +762,7 @@ impl Visibility {
                     }
                 });
             } else {
-                for &p in flagged.iter() {
+                for &p in &kept.patches {
                     // the patch test was for the receiver's whole patch: this face may be
                     // out of reach
                     let pp = &self.patches[p as usize];
@@ -751,6 +776,15 @@ impl Visibility {
         }
         lids
     }
+}
+
+/// Flagged patches that have faces to test, given the parts left out ([`Cache::kept`]).
+struct Kept {
+    /// Parts left out (bit p for part p).
+    mask: u64,
+    patches: Vec<u32>,
+    /// Faces to test in them.
+    count: usize,
 }
 
 /// Above this many convex pieces per face, shadows are sampled instead of clipped (the

@@ -427,20 +427,21 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             if work > PART_WORK_LIMIT {
                 return None;
             }
-            let mut hull_ahead = Vec::with_capacity(fs.len());
-            for &f in &fs {
-                let face = &faces.faces[f as usize];
-                let (mut ahead, mut behind) = (false, false);
-                for v in &vertices {
-                    let h = face.normal.dot(*v - face.centroid);
-                    ahead |= h > tol;
-                    behind |= h < -tol;
-                }
-                if ahead && behind {
-                    return None; // not on its hull's boundary
-                }
-                hull_ahead.push(ahead);
-            }
+            // faces × vertices: the fine dish's 6,144 faces take tens of ms, so in parallel
+            let hull_ahead: Vec<bool> = fs
+                .par_iter()
+                .map(|&f| {
+                    let face = &faces.faces[f as usize];
+                    let (mut ahead, mut behind) = (false, false);
+                    for v in &vertices {
+                        let h = face.normal.dot(*v - face.centroid);
+                        ahead |= h > tol;
+                        behind |= h < -tol;
+                    }
+                    // on its hull's boundary unless vertices lie on both sides
+                    (!(ahead && behind)).then_some(ahead)
+                })
+                .collect::<Option<_>>()?;
             let mut lid = None;
             if let Some(open) = open.get(&root) {
                 // the open side must be flat: Newell's normal of its edges, then distances

@@ -26,6 +26,29 @@ pub struct Occluder {
     offset: f64,
 }
 
+/// An [`Occluder`] built on first use, once. Exact clipping decides most faces without
+/// rays (the box-wings cast none), so many requests never need the BVH: building it
+/// was a fifth of the fine-dish box-wing's preparation.
+pub struct LazyOccluder {
+    mesh: Mesh,
+    bvh: std::sync::OnceLock<Occluder>,
+}
+
+impl LazyOccluder {
+    pub fn new(mesh: &Mesh) -> LazyOccluder {
+        LazyOccluder {
+            mesh: mesh.clone(),
+            bvh: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// The occluder, built now if not yet.
+    #[inline]
+    pub fn get(&self) -> &Occluder {
+        self.bvh.get_or_init(|| Occluder::build(&self.mesh))
+    }
+}
+
 impl Occluder {
     /// Builds the BVH once per request.
     pub fn build(mesh: &Mesh) -> Occluder {

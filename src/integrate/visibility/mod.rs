@@ -43,7 +43,7 @@ mod grid;
 mod parts;
 mod sampler;
 
-use crate::geometry::bvh::Occluder;
+use crate::geometry::bvh::LazyOccluder;
 use crate::geometry::convex::{convex_parts, ConvexPart};
 use crate::geometry::polygon::{convex_hull, Region};
 use crate::geometry::Faces;
@@ -152,7 +152,8 @@ enum Side {
 /// ([`grid`]) and the ray sampler ([`sampler`]) have their own modules.
 pub struct Visibility {
     mode: VisibilityMode,
-    occluder: Occluder,
+    /// Ray casting, for the faces that clipping leaves to sampling.
+    occluder: LazyOccluder,
     faces: Vec<FaceGeom>,
     patches: Vec<Patch>,
     /// Per receiver patch: the occluder patches that may block it, with their relation.
@@ -266,7 +267,7 @@ impl Visibility {
     /// ([`Faces::sort_spatially`]) so that patches are compact.
     pub fn build(scene: &Scene, faces: &Faces, mode: VisibilityMode) -> Visibility {
         let mesh = &scene.mesh;
-        let occluder = Occluder::build(mesh);
+        let occluder = LazyOccluder::new(mesh);
         let corners: Vec<[DVec3; 3]> = (0..mesh.triangles.len()).map(|i| mesh.corners(i)).collect();
         let (_, scale) = mesh.bounding_sphere();
         let tol = 1e-9 * scale;
@@ -317,6 +318,22 @@ impl Visibility {
             })
             .collect();
         let exact = nf.saturating_mul(mesh.vertices.len()) <= EXACT_WORK;
+        let patch_vertices: Vec<Vec<DVec3>> = if exact && mode != VisibilityMode::Centroid {
+            patches
+                .iter()
+                .map(|p| {
+                    let mut v: Vec<DVec3> = p
+                        .faces
+                        .clone()
+                        .flat_map(|f| geoms[f as usize].vertices.iter().copied())
+                        .collect();
+                    sort_dedup(&mut v);
+                    v
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         let candidates: Vec<Vec<(u32, Side)>> = if mode == VisibilityMode::Centroid {
             Vec::new()
         } else {
@@ -330,7 +347,8 @@ impl Visibility {
                             if !may_block(&geoms, q_faces, p_faces, tol) {
                                 return None;
                             }
-                            Some((p, relation(&geoms, q_faces, p_faces, tol, exact)))
+                            let q_vertices = patch_vertices.get(q).map(Vec::as_slice);
+                            Some((p, relation(&geoms, &patches[q], q_vertices, p_faces, tol)))
                         })
                         .collect()
                 })
@@ -1152,27 +1170,43 @@ fn reaches_front(o: &FaceGeom, n: DVec3, p: DVec3, tol: f64) -> bool {
 /// Where the receiver faces lie relative to every plane of the occluder faces.
 fn relation(
     geoms: &[FaceGeom],
-    q_faces: &Range<u32>,
+    q: &Patch,
+    q_vertices: Option<&[DVec3]>,
     p_faces: &Range<u32>,
     tol: f64,
-    exact: bool,
 ) -> Side {
     let (mut front, mut behind) = (true, true);
     for gi in p_faces.clone() {
         let g = &geoms[gi as usize];
-        for fi in q_faces.clone() {
-            let f = &geoms[fi as usize];
-            if exact {
-                for v in &f.vertices {
-                    let s = g.normal.dot(*v - g.centroid);
-                    front &= s >= -tol;
-                    behind &= s <= tol;
-                }
-            } else {
-                let s = g.normal.dot(f.centroid - g.centroid);
-                front &= s - f.radius >= -tol;
-                behind &= s + f.radius <= tol;
+        // The receiver patch's sphere decides this plane when it settles both flags
+        // (one is usually false already): most planes of a distant patch.
+        let s = g.normal.dot(q.centre - g.centroid);
+        let (sphere_front, sphere_behind) = (s - q.radius >= -tol, s + q.radius <= tol);
+        if (sphere_front || !front) && (sphere_behind || !behind) {
+            front &= sphere_front;
+            behind &= sphere_behind;
+            if !front && !behind {
+                return Side::Mixed;
             }
+            continue;
+        }
+        if let Some(vertices) = q_vertices {
+            // exact: the patch's distinct vertices (faces share theirs)
+            for v in vertices {
+                let s = g.normal.dot(*v - g.centroid);
+                front &= s >= -tol;
+                behind &= s <= tol;
+            }
+            if !front && !behind {
+                return Side::Mixed;
+            }
+            continue;
+        }
+        for fi in q.faces.clone() {
+            let f = &geoms[fi as usize];
+            let s = g.normal.dot(f.centroid - g.centroid);
+            front &= s - f.radius >= -tol;
+            behind &= s + f.radius <= tol;
             if !front && !behind {
                 return Side::Mixed;
             }
@@ -1357,7 +1391,7 @@ mod tests {
             .copied()
             .collect();
         dish.material_ids = vec![0; dish.triangles.len()];
-        let rays = Occluder::build(&dish);
+        let rays = crate::geometry::bvh::Occluder::build(&dish);
         let mut rnd = crate::test_rng(44);
         let mut states = CapStates::default();
         let mut seen = [0usize; 3];
@@ -1519,7 +1553,7 @@ mod tests {
                 (a, b) = (1.0 - a, 1.0 - b);
             }
             let p = t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b;
-            let clear = |d: DVec3| vis.occluder.is_clear(p, normal, d);
+            let clear = |d: DVec3| vis.occluder.get().is_clear(p, normal, d);
             if !clear(dirs.view) {
                 continue;
             }

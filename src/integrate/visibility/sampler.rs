@@ -1,7 +1,7 @@
 //! Adaptive ray sampling of a face's visible area, where exact clipping cannot decide.
 
 use super::{reaches, Blocker};
-use crate::geometry::bvh::Occluder;
+use crate::geometry::bvh::LazyOccluder;
 use glam::DVec3;
 
 /// Deepest refinement: leaves down to 2⁻¹⁶ of a triangle's size.
@@ -9,7 +9,7 @@ const MAX_DEPTH: u32 = 16;
 
 /// Adaptive sampler state for one face.
 pub(super) struct Sampler<'a> {
-    occluder: &'a Occluder,
+    occluder: &'a LazyOccluder,
     n: DVec3,
     /// Face centroid: samples are nudged towards it (see [`Sampler::eval`]).
     centre: DVec3,
@@ -28,7 +28,7 @@ pub(super) struct Sampler<'a> {
 
 impl<'a> Sampler<'a> {
     pub(super) fn new(
-        occluder: &'a Occluder,
+        occluder: &'a LazyOccluder,
         n: DVec3,
         centre: DVec3,
         dirs: [Option<DVec3>; 3],
@@ -59,7 +59,7 @@ impl<'a> Sampler<'a> {
         let towards = self.centre - p;
         let len = towards.length();
         let p = if len > 0.0 {
-            p + towards * (self.occluder.offset().min(0.5 * len) / len)
+            p + towards * (self.occluder.get().offset().min(0.5 * len) / len)
         } else {
             p
         };
@@ -67,7 +67,7 @@ impl<'a> Sampler<'a> {
         for (k, (&c, d)) in check.iter().zip(self.dirs).enumerate() {
             if let (true, Some(d)) = (c, d) {
                 self.rays += 1;
-                clear[k] = self.occluder.is_clear(p, self.n, d);
+                clear[k] = self.occluder.get().is_clear(p, self.n, d);
                 if k == 0 && !clear[0] {
                     return 0; // hidden from the observer: nothing else matters
                 }

@@ -409,6 +409,11 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             }
         }
     }
+    // in a fixed order: the lid's corners start from the first, and the same mesh must
+    // give the same light curve to the last bit whatever order the hash map iterates in
+    for edges in open.values_mut() {
+        edges.sort_unstable();
+    }
     let mut work = 0usize;
     let mut parts: Vec<ConvexPart> = members
         .into_iter()

@@ -545,15 +545,18 @@ impl Visibility {
                     }
                 }
             }
+            let lit = |l: LidState, area: f64| if l == LidState::Closed { 0.0 } else { area };
             if !lids.contains(&LidState::Clip) {
-                let lit = |l: LidState| {
-                    if l == LidState::Closed {
-                        0.0
-                    } else {
-                        f.pieces_area
-                    }
-                };
-                return (lit(lids[1]), lit(lids[2]), 0);
+                return (lit(lids[1], f.pieces_area), lit(lids[2], f.pieces_area), 0);
+            }
+            // clipped to the lid alone: no blockers to search for
+            let open = [0, 1, 2].map(|k| directions[k].filter(|_| lids[k] != LidState::Closed));
+            cache.exact.part_hits.iter_mut().for_each(Vec::clear);
+            let none: [Vec<Blocker>; 3] = Default::default();
+            if let Some((a_sun, a_earth)) =
+                self.exact_area(&mut cache.exact, face, n, &open, &none, &lids)
+            {
+                return (lit(lids[1], a_sun), lit(lids[2], a_earth), 0);
             }
         }
         // A shadow edge crosses about perimeter/h leaves of size h, each misjudged by a
@@ -625,6 +628,7 @@ impl Visibility {
 
     /// The state of cap `cap`'s lid for its face `face` along `d`, from the cap's tree
     /// walked once per epoch and direction (`states`: the cache's, for this direction).
+    #[inline]
     fn lid_state(
         &self,
         states: &mut Vec<CapStates>,

@@ -433,16 +433,12 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
                 return None;
             }
             // faces × vertices: the fine dish's 6,144 faces take tens of ms, so in parallel
+            let points = super::mesh::Points::new(&vertices);
             let hull_ahead: Vec<bool> = fs
                 .par_iter()
                 .map(|&f| {
                     let face = &faces.faces[f as usize];
-                    let (mut ahead, mut behind) = (false, false);
-                    for v in &vertices {
-                        let h = face.normal.dot(*v - face.centroid);
-                        ahead |= h > tol;
-                        behind |= h < -tol;
-                    }
+                    let (ahead, behind) = points.sides(face.normal, face.centroid, tol);
                     // on its hull's boundary unless vertices lie on both sides
                     (!(ahead && behind)).then_some(ahead)
                 })

@@ -83,3 +83,35 @@ pub fn bounding_sphere(points: &[DVec3]) -> (DVec3, f64) {
         .fold(0.0, f64::max);
     (centre, radius)
 }
+
+/// Points stored by coordinate (all x, then all y, then all z), for tests run against
+/// many points at once: plane-side tests over them compile to vector instructions.
+#[derive(Debug, Clone, Default)]
+pub struct Points {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+}
+
+impl Points {
+    pub fn new(points: &[DVec3]) -> Points {
+        Points {
+            x: points.iter().map(|p| p.x).collect(),
+            y: points.iter().map(|p| p.y).collect(),
+            z: points.iter().map(|p| p.z).collect(),
+        }
+    }
+
+    /// Whether some point lies more than `tol` (m) in front of the plane through `c` with
+    /// unit normal `n`, and whether some point lies more than `tol` behind it. Heights are
+    /// `n·(p − c)` rounded as [`DVec3::dot`] rounds them.
+    pub fn sides(&self, n: DVec3, c: DVec3, tol: f64) -> (bool, bool) {
+        let (mut ahead, mut behind) = (false, false);
+        for ((x, y), z) in self.x.iter().zip(&self.y).zip(&self.z) {
+            let h = (n.x * (x - c.x) + n.y * (y - c.y)) + n.z * (z - c.z);
+            ahead |= h > tol;
+            behind |= h < -tol;
+        }
+        (ahead, behind)
+    }
+}

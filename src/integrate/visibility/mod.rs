@@ -45,6 +45,7 @@ mod sampler;
 
 use crate::geometry::bvh::LazyOccluder;
 use crate::geometry::convex::{convex_parts, ConvexPart};
+use crate::geometry::mesh::Points;
 use crate::geometry::polygon::{convex_hull, Region};
 use crate::geometry::Faces;
 use crate::scene::Scene;
@@ -318,7 +319,7 @@ impl Visibility {
             })
             .collect();
         let exact = nf.saturating_mul(mesh.vertices.len()) <= EXACT_WORK;
-        let patch_vertices: Vec<Vec<DVec3>> = if exact && mode != VisibilityMode::Centroid {
+        let patch_vertices: Vec<Points> = if exact && mode != VisibilityMode::Centroid {
             patches
                 .iter()
                 .map(|p| {
@@ -328,7 +329,7 @@ impl Visibility {
                         .flat_map(|f| geoms[f as usize].vertices.iter().copied())
                         .collect();
                     sort_dedup(&mut v);
-                    v
+                    Points::new(&v)
                 })
                 .collect()
         } else {
@@ -347,7 +348,7 @@ impl Visibility {
                             if !may_block(&geoms, q_faces, p_faces, tol) {
                                 return None;
                             }
-                            let q_vertices = patch_vertices.get(q).map(Vec::as_slice);
+                            let q_vertices = patch_vertices.get(q);
                             Some((p, relation(&geoms, &patches[q], q_vertices, p_faces, tol)))
                         })
                         .collect()
@@ -1175,7 +1176,7 @@ fn reaches_front(o: &FaceGeom, n: DVec3, p: DVec3, tol: f64) -> bool {
 fn relation(
     geoms: &[FaceGeom],
     q: &Patch,
-    q_vertices: Option<&[DVec3]>,
+    q_vertices: Option<&Points>,
     p_faces: &Range<u32>,
     tol: f64,
 ) -> Side {
@@ -1196,11 +1197,9 @@ fn relation(
         }
         if let Some(vertices) = q_vertices {
             // exact: the patch's distinct vertices (faces share theirs)
-            for v in vertices {
-                let s = g.normal.dot(*v - g.centroid);
-                front &= s >= -tol;
-                behind &= s <= tol;
-            }
+            let (ahead, back) = vertices.sides(g.normal, g.centroid, tol);
+            front &= !back;
+            behind &= !ahead;
             if !front && !behind {
                 return Side::Mixed;
             }

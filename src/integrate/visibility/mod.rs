@@ -26,8 +26,9 @@
 //!   it: their faces are not searched at all;
 //! - a face of a convex cap, on its inner side, sees out only through the cap's lid
 //!   (its rim): per direction the lid passes all of it, none of it, or it is clipped to
-//!   the lid projected back onto it (decided for many faces at once, [`caps`]); only faces in front of the lid or inside the cap's
-//!   hull ([`parts::lid_blockers`]) are searched besides.
+//!   the lid projected back onto it (decided for many faces at once, [`caps`]); only
+//!   faces in front of the lid or inside the cap's hull ([`parts::lid_blockers`]) are
+//!   searched besides.
 //!
 //! Faces nearly edge-on to a direction (the projection stretches without bound) or cut
 //! into too many pieces are **sampled** with rays instead, refining each triangle
@@ -397,16 +398,14 @@ impl Visibility {
             }
         }
         let lid_blockers = parts::lid_blockers(&geoms, &parts, &part_of, tol);
-        for g in &mut geoms {
-            for s in 0..2 {
-                g.lid_only[s] = g.lid_side[s] && !g.part_shadows.iter().any(|p| p.sides[s]);
-            }
-        }
+        // the lid alone decides a cap's inner face when no other face can reach into the
+        // cap and no part is cast whole on the face
         for (g, &k) in geoms.iter_mut().zip(&part_of) {
-            let reachable =
-                k == NO_PART || !matches!(&lid_blockers[k as usize], Some(b) if b.is_empty());
-            if reachable {
-                g.lid_only = [false; 2];
+            let sealed =
+                k != NO_PART && matches!(&lid_blockers[k as usize], Some(b) if b.is_empty());
+            for s in 0..2 {
+                g.lid_only[s] =
+                    sealed && g.lid_side[s] && !g.part_shadows.iter().any(|p| p.sides[s]);
             }
         }
         let cap_trees: Vec<Option<CapTree>> = parts
@@ -502,19 +501,6 @@ impl Visibility {
     /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on
     /// side `side` (+1 front, −1 back); plus the number of rays cast. `budget` (m²) is the
     /// area of this face whose misclassification the tolerance allows.
-    pub fn category(&self, face: usize, side: f64) -> usize {
-        let f = &self.faces[face];
-        let si = usize::from(side < 0.0);
-        if f.lid_side[si] {
-            0
-        } else if self.part_of[face] != NO_PART
-            && self.parts[self.part_of[face] as usize].lid.is_some()
-        {
-            1
-        } else {
-            2
-        }
-    }
     pub fn visible_area(
         &self,
         cache: &mut Cache,

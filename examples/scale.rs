@@ -23,7 +23,6 @@ fn main() {
         .map(|a| a.parse().expect("integer arguments"))
         .collect();
     let out = (raw.len() == 5).then(|| raw.pop().expect("five arguments"));
-    let args: Vec<u32> = args.into_iter().take(4).collect();
     let [flat, rings, sectors, epochs] = args[..] else {
         eprintln!("usage: scale FLAT_LEVELS DISH_RINGS DISH_SECTORS EPOCHS");
         std::process::exit(2);

@@ -97,7 +97,6 @@ impl HullIndices {
                 .collect();
             self.order.extend((0..points.len() as u32).filter(|&i| {
                 let p = points[i as usize];
-                // inward normals are −perp for a counter-clockwise ring
                 // perp is the inward normal of a counter-clockwise ring: a point is kept
                 // unless it lies deeper than the slack inside every edge
                 edges.len() < 3 || edges.iter().any(|&(a, m)| m.dot(p - a) <= slack)

@@ -81,9 +81,7 @@ impl CapTree {
             let g = &geoms[f as usize];
             tree.balls.push((g.centroid, g.radius));
             for v in &g.vertices {
-                let i = part
-                    .vertices
-                    .binary_search_by(|p| super::position_order(p, v))
+                let i = super::parts::vertex_index(part, v)
                     .expect("a cap face's vertices are the cap's");
                 tree.corners.push(i as u32);
             }

@@ -532,18 +532,17 @@ impl Visibility {
                     }
                 }
             }
-            let lit = |l: LidState, area: f64| if l == LidState::Closed { 0.0 } else { area };
             if !lids.contains(&LidState::Clip) {
-                return (lit(lids[1], f.pieces_area), lit(lids[2], f.pieces_area), 0);
+                let (a_sun, a_earth) = dark(&lids, (f.pieces_area, f.pieces_area));
+                return (a_sun, a_earth, 0);
             }
             // clipped to the lid alone: no blockers to search for
-            let open = [0, 1, 2].map(|k| directions[k].filter(|_| lids[k] != LidState::Closed));
             cache.exact.part_hits.iter_mut().for_each(Vec::clear);
             let none: [Vec<Blocker>; 3] = Default::default();
-            if let Some((a_sun, a_earth)) =
-                self.exact_area(&mut cache.exact, face, n, &open, &none, &lids)
-            {
-                return (lit(lids[1], a_sun), lit(lids[2], a_earth), 0);
+            let open = open_directions(&directions, &lids);
+            if let Some(areas) = self.exact_area(&mut cache.exact, face, n, &open, &none, &lids) {
+                let (a_sun, a_earth) = dark(&lids, areas);
+                return (a_sun, a_earth, 0);
             }
         }
         // A shadow edge crosses about perimeter/h leaves of size h, each misjudged by a
@@ -567,40 +566,20 @@ impl Visibility {
         if lids[0] == LidState::Closed {
             return (0.0, 0.0, 0); // the face's own cap hides it
         }
-        // along a direction its cap closes, the face is dark: no shadows to cast
-        let mut open = directions;
-        for (d, lid) in open.iter_mut().zip(lids) {
-            if lid == LidState::Closed {
-                *d = None;
-            }
-        }
-        let dark = |(a_sun, a_earth): (f64, f64)| {
-            (
-                if lids[1] == LidState::Closed {
-                    0.0
-                } else {
-                    a_sun
-                },
-                if lids[2] == LidState::Closed {
-                    0.0
-                } else {
-                    a_earth
-                },
-            )
-        };
+        let open = open_directions(&directions, &lids);
         let full_area = f.pieces_area;
         if s.blockers.iter().all(Vec::is_empty)
             && cache.exact.part_hits.iter().all(Vec::is_empty)
             && lids.iter().all(|l| *l != LidState::Clip)
         {
-            let (a_sun, a_earth) = dark((full_area, full_area));
+            let (a_sun, a_earth) = dark(&lids, (full_area, full_area));
             return (a_sun, a_earth, 0);
         }
         if self.mode == VisibilityMode::Adaptive && self.clip {
             if let Some(areas) =
                 self.exact_area(&mut cache.exact, face, n, &open, &s.blockers, &lids)
             {
-                let (a_sun, a_earth) = dark(areas);
+                let (a_sun, a_earth) = dark(&lids, areas);
                 return (a_sun, a_earth, 0);
             }
             // the sampler needs every blocker face by face: the cap's own and the parts'
@@ -785,6 +764,19 @@ impl Visibility {
         }
         lids
     }
+}
+
+/// The directions along which a face's own cap does not close it: along the others it is
+/// dark, with no shadows to cast.
+fn open_directions(directions: &[Option<DVec3>; 3], lids: &[LidState; 3]) -> [Option<DVec3>; 3] {
+    [0, 1, 2].map(|k| directions[k].filter(|_| lids[k] != LidState::Closed))
+}
+
+/// Sunlit and earthlit areas (m²) zeroed where the face's own cap closes the Sun's or the
+/// Earth's direction.
+fn dark(lids: &[LidState; 3], (a_sun, a_earth): (f64, f64)) -> (f64, f64) {
+    let lit = |l: LidState, a: f64| if l == LidState::Closed { 0.0 } else { a };
+    (lit(lids[1], a_sun), lit(lids[2], a_earth))
 }
 
 /// Flagged patches that have faces to test, given the parts left out ([`Cache::kept`]).

@@ -16,6 +16,7 @@
 
 use super::FaceGeom;
 use crate::geometry::convex::ConvexPart;
+use crate::geometry::mesh::Points;
 use crate::geometry::polygon::{convex_hull, HullIndices, Region};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
@@ -219,6 +220,7 @@ pub(super) fn lid_blockers(
             let height = |v: DVec3| lid.normal.dot(v - lid.origin);
             // the hull lies between its deepest point and the lid's plane
             let deepest = part.vertices.iter().map(|v| height(*v)).fold(0.0, f64::min);
+            let points = Points::new(&part.vertices);
             Some(
                 (0..geoms.len() as u32)
                     .into_par_iter()
@@ -237,10 +239,8 @@ pub(super) fn lid_blockers(
                             return false; // below the hull
                         }
                         // outside the hull when the face's plane has the hull on one side
-                        let h = |v: &DVec3| o.normal.dot(*v - o.centroid);
-                        let above = part.vertices.iter().all(|v| h(v) >= -tol);
-                        let below = part.vertices.iter().all(|v| h(v) <= tol);
-                        !(above || below)
+                        let (ahead, behind) = points.sides(o.normal, o.centroid, tol);
+                        ahead && behind
                     })
                     .collect(),
             )
@@ -265,11 +265,7 @@ pub(super) fn normal_cones(
     parts
         .par_iter()
         .map(|part| {
-            let index = |p: &DVec3| {
-                part.vertices
-                    .binary_search_by(|v| super::position_order(v, p))
-                    .ok()
-            };
+            let index = |p: &DVec3| vertex_index(part, p);
             let mut normals: Vec<Vec<DVec3>> = vec![Vec::new(); part.vertices.len()];
             for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
                 let out = if ahead {
@@ -315,6 +311,14 @@ pub(super) fn normal_cones(
                 .collect()
         })
         .collect()
+}
+
+/// Where the point `p` is among `part`'s vertices (which are in [`super::sort_dedup`]'s
+/// order), if it is one.
+pub(super) fn vertex_index(part: &ConvexPart, p: &DVec3) -> Option<usize> {
+    part.vertices
+        .binary_search_by(|v| super::position_order(v, p))
+        .ok()
 }
 
 /// A part's silhouette along one direction, kept for the epoch.

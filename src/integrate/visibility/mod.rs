@@ -260,9 +260,6 @@ impl Cache {
 const LEAF_SIZE_FACTOR: f64 = 8.0;
 /// Above this faces × convex parts, parts shadow face by face, not as one hull.
 const PART_PAIRS_LIMIT: usize = 10_000_000;
-/// Above this faces × vertices, patch relations come from bounding spheres (conservative)
-/// instead of every vertex.
-const EXACT_WORK: usize = 20_000_000;
 
 impl Visibility {
     /// Builds the BVH and the occluder candidates. `faces` should be in spatial order
@@ -319,10 +316,13 @@ impl Visibility {
                 patch_of(&geoms[range.start as usize..range.end as usize], range)
             })
             .collect();
-        let exact = nf.saturating_mul(mesh.vertices.len()) <= EXACT_WORK;
-        let patch_vertices: Vec<Points> = if exact && mode != VisibilityMode::Centroid {
-            patches
-                .iter()
+        let candidates: Vec<Vec<(u32, Side)>> = if mode == VisibilityMode::Centroid {
+            Vec::new()
+        } else {
+            // Relations test each patch's distinct vertices: no more memory than the
+            // faces' own vertex lists, and no more work than their bounding spheres.
+            let patch_vertices: Vec<Points> = patches
+                .par_iter()
                 .map(|p| {
                     let mut v: Vec<DVec3> = p
                         .faces
@@ -332,13 +332,7 @@ impl Visibility {
                     sort_dedup(&mut v);
                     Points::new(&v)
                 })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let candidates: Vec<Vec<(u32, Side)>> = if mode == VisibilityMode::Centroid {
-            Vec::new()
-        } else {
+                .collect();
             (0..patches.len())
                 .into_par_iter()
                 .map(|q| {
@@ -349,7 +343,7 @@ impl Visibility {
                             if !may_block(&geoms, q_faces, p_faces, tol) {
                                 return None;
                             }
-                            let q_vertices = patch_vertices.get(q);
+                            let q_vertices = &patch_vertices[q];
                             Some((p, relation(&geoms, &patches[q], q_vertices, p_faces, tol)))
                         })
                         .collect()
@@ -1154,7 +1148,7 @@ fn reaches_front(o: &FaceGeom, n: DVec3, p: DVec3, tol: f64) -> bool {
 fn relation(
     geoms: &[FaceGeom],
     q: &Patch,
-    q_vertices: Option<&Points>,
+    q_vertices: &Points,
     p_faces: &Range<u32>,
     tol: f64,
 ) -> Side {
@@ -1173,24 +1167,12 @@ fn relation(
             }
             continue;
         }
-        if let Some(vertices) = q_vertices {
-            // exact: the patch's distinct vertices (faces share theirs)
-            let (ahead, back) = vertices.sides(g.normal, g.centroid, tol);
-            front &= !back;
-            behind &= !ahead;
-            if !front && !behind {
-                return Side::Mixed;
-            }
-            continue;
-        }
-        for fi in q.faces.clone() {
-            let f = &geoms[fi as usize];
-            let s = g.normal.dot(f.centroid - g.centroid);
-            front &= s - f.radius >= -tol;
-            behind &= s + f.radius <= tol;
-            if !front && !behind {
-                return Side::Mixed;
-            }
+        // exact: the patch's distinct vertices (faces share theirs)
+        let (ahead, back) = q_vertices.sides(g.normal, g.centroid, tol);
+        front &= !back;
+        behind &= !ahead;
+        if !front && !behind {
+            return Side::Mixed;
         }
     }
     if front {

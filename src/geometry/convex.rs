@@ -144,23 +144,27 @@ impl Lid {
     /// Does the ray from `p` along unit `d` leave through the lid (within `tol`, m)? `p`
     /// must lie on the hull's side of the lid's plane.
     pub fn passes(&self, p: glam::DVec3, d: glam::DVec3, tol: f64) -> bool {
+        self.along(d).is_some_and(|view| view.passes(p, tol))
+    }
+
+    /// The lid seen along unit `d`, for testing many points along one direction; `None`
+    /// when d does not point out through the lid's plane (no ray leaves through it).
+    pub fn along(&self, d: glam::DVec3) -> Option<LidView<'_>> {
         let dn = d.dot(self.normal);
         if dn <= 0.0 {
-            return false;
+            return None;
         }
-        let q = self.meet(p, d);
-        let r = q.distance(self.centre);
-        if r <= self.inner {
-            return true;
-        }
-        if r > self.outer + tol {
-            return false;
-        }
-        // inside exactly when inside the edge that the ray from the centre through q
-        // leaves by (the outline is convex about the centre)
-        let (a, b) = self.edge(self.sector(q));
-        let e = b - a;
-        e.perp_dot(q - a) >= -tol * e.length()
+        // meet(p) = u·(p − o) + (u·d)·(n·(o − p))/dn = (u − n·(u·d)/dn)·(p − o), and as
+        // much for w: an affine map of p
+        let x = self.u - self.normal * (self.u.dot(d) / dn);
+        let y = self.w - self.normal * (self.w.dot(d) / dn);
+        Some(LidView {
+            lid: self,
+            x,
+            y,
+            offset: -glam::DVec2::new(x.dot(self.origin), y.dot(self.origin)),
+            dn,
+        })
     }
 
     /// The edge (index of its first corner) that the ray from the centre through `q`
@@ -319,23 +323,67 @@ impl Lid {
         }
     }
 
-    /// [`Lid::passes`] for every point of the ball about `c` of radius `r` (m) at once:
-    /// `Some(true)` when every ray along `d` from it leaves through the lid, `Some(false)`
+    /// [`LidView::classify`] along unit `d`.
+    pub fn classify(&self, c: glam::DVec3, r: f64, d: glam::DVec3, tol: f64) -> Option<bool> {
+        match self.along(d) {
+            None => Some(false),
+            Some(view) => view.classify(c, r, tol),
+        }
+    }
+}
+
+/// A [`Lid`] seen along one direction d (pointing out through its plane): where a ray
+/// along d from a point meets the plane is an affine map of the point, two dot products.
+#[derive(Debug, Clone, Copy)]
+pub struct LidView<'a> {
+    lid: &'a Lid,
+    /// Rows of the map to outline coordinates, and its offset.
+    x: glam::DVec3,
+    y: glam::DVec3,
+    offset: glam::DVec2,
+    /// d·normal, > 0.
+    dn: f64,
+}
+
+impl LidView<'_> {
+    /// Where the ray from `p` meets the lid's plane, in outline coordinates (m).
+    #[inline]
+    pub fn meet(&self, p: glam::DVec3) -> glam::DVec2 {
+        glam::DVec2::new(self.x.dot(p), self.y.dot(p)) + self.offset
+    }
+
+    /// Does the ray from `p` leave through the lid (within `tol`, m)? `p` must lie on the
+    /// hull's side of the lid's plane.
+    pub fn passes(&self, p: glam::DVec3, tol: f64) -> bool {
+        let lid = self.lid;
+        let q = self.meet(p);
+        let r = q.distance(lid.centre);
+        if r <= lid.inner {
+            return true;
+        }
+        if r > lid.outer + tol {
+            return false;
+        }
+        // inside exactly when inside the edge that the ray from the centre through q
+        // leaves by (the outline is convex about the centre)
+        let (a, b) = lid.edge(lid.sector(q));
+        let e = b - a;
+        e.perp_dot(q - a) >= -tol * e.length()
+    }
+
+    /// [`LidView::passes`] for every point of the ball about `c` of radius `r` (m) at
+    /// once: `Some(true)` when every ray from it leaves through the lid, `Some(false)`
     /// when none does, `None` when the ball is not decided as a whole. The rays from the
     /// ball meet the lid's plane within r/cos of the centre's ray, cos = d·normal.
-    pub fn classify(&self, c: glam::DVec3, r: f64, d: glam::DVec3, tol: f64) -> Option<bool> {
-        let dn = d.dot(self.normal);
-        if dn <= 0.0 {
-            return Some(false);
-        }
-        let reach = r / dn;
+    pub fn classify(&self, c: glam::DVec3, r: f64, tol: f64) -> Option<bool> {
+        let reach = r / self.dn;
         if !reach.is_finite() {
             return None;
         }
-        let rq = self.meet(c, d).distance(self.centre);
-        if rq + reach <= self.inner {
+        let rq = self.meet(c).distance(self.lid.centre);
+        if rq + reach <= self.lid.inner {
             Some(true)
-        } else if rq - reach > self.outer + tol {
+        } else if rq - reach > self.lid.outer + tol {
             Some(false)
         } else {
             None

@@ -10,7 +10,7 @@
 //! few hundred ball tests.
 
 use super::FaceGeom;
-use crate::geometry::convex::{ConvexPart, Lid};
+use crate::geometry::convex::{ConvexPart, Lid, LidView};
 use glam::DVec3;
 
 /// How a face on the inner side of a convex cap sees out through the cap's lid along a
@@ -142,27 +142,24 @@ impl CapTree {
         tested: &mut Vec<u8>,
     ) {
         states.clear();
+        let Some(view) = lid.along(d) else {
+            // d does not point out through the lid's plane: no ray leaves the cap
+            states.resize(self.order.len(), LidState::Closed);
+            return;
+        };
         states.resize(self.order.len(), LidState::Clip);
         tested.clear();
         tested.resize(self.points.len(), UNTESTED);
         if !self.nodes.is_empty() {
-            self.walk(0, lid, d, tol, states, tested);
+            self.walk(0, &view, tol, states, tested);
         }
     }
 
-    fn walk(
-        &self,
-        at: usize,
-        lid: &Lid,
-        d: DVec3,
-        tol: f64,
-        states: &mut [LidState],
-        tested: &mut [u8],
-    ) {
+    fn walk(&self, at: usize, lid: &LidView, tol: f64, states: &mut [LidState], tested: &mut [u8]) {
         let node = &self.nodes[at];
         let range = node.start as usize..node.end as usize;
         // A ball the lid decides decides every face in it: their balls lie inside it.
-        if let Some(open) = lid.classify(node.centre, node.radius, d, tol) {
+        if let Some(open) = lid.classify(node.centre, node.radius, tol) {
             let state = if open {
                 LidState::Open
             } else {
@@ -173,20 +170,20 @@ impl CapTree {
         }
         if node.second == 0 {
             for i in range {
-                states[i] = self.face_state(i, lid, d, tol, tested);
+                states[i] = self.face_state(i, lid, tol, tested);
             }
             return;
         }
-        self.walk(at + 1, lid, d, tol, states, tested);
-        self.walk(node.second as usize, lid, d, tol, states, tested);
+        self.walk(at + 1, lid, tol, states, tested);
+        self.walk(node.second as usize, lid, tol, states, tested);
     }
 
     /// The lid's verdict on the face at `i` in tree order: its ball, else its vertices
     /// (each tested once per walk: neighbours share them). A face whose every vertex
     /// passes is open: its projection onto the lid's plane is convex, as the lid is.
-    fn face_state(&self, i: usize, lid: &Lid, d: DVec3, tol: f64, tested: &mut [u8]) -> LidState {
+    fn face_state(&self, i: usize, lid: &LidView, tol: f64, tested: &mut [u8]) -> LidState {
         let (c, r) = self.balls[i];
-        match lid.classify(c, r, d, tol) {
+        match lid.classify(c, r, tol) {
             Some(true) => return LidState::Open,
             Some(false) => return LidState::Closed,
             None => {}
@@ -196,7 +193,7 @@ impl CapTree {
         for &v in corners {
             let t = &mut tested[v as usize];
             if *t == UNTESTED {
-                *t = if lid.passes(self.points[v as usize], d, tol) {
+                *t = if lid.passes(self.points[v as usize], tol) {
                     PASSES
                 } else {
                     BLOCKED

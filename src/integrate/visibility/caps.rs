@@ -133,6 +133,9 @@ impl CapTree {
 
     /// Every face's state along `d`, into `states` (indexed like `order`); `tested` is a
     /// buffer.
+    // out of line: once per epoch and direction, where the lookups that call it run
+    // once per face
+    #[inline(never)]
     pub(super) fn states(
         &self,
         lid: &Lid,

@@ -636,7 +636,7 @@ impl Visibility {
 
     /// The state of cap `cap`'s lid for its face `face` along `d`, from the cap's tree
     /// walked once per epoch and direction (`states`: the cache's, for this direction).
-    #[inline]
+    #[inline(always)]
     fn lid_state(
         &self,
         states: &mut Vec<CapStates>,

@@ -265,7 +265,7 @@ impl Region {
                 {
                     continue;
                 }
-                match relation_to(piece, self.deferred(k), eps) {
+                match relation_to(piece, (pc.lo, pc.hi), self.deferred(k), eps) {
                     Relation::Apart => {}
                     Relation::Inside => covered = true,
                     Relation::Crossing => crossing |= 1 << k,
@@ -332,10 +332,7 @@ impl Region {
                        edges: &[(DVec2, DVec2)]| {
             for &(a, m) in edges {
                 // inside the edge when the bounding box's lowest corner along m is
-                let corner = DVec2::new(
-                    if m.x > 0.0 { lo.x } else { hi.x },
-                    if m.y > 0.0 { lo.y } else { hi.y },
-                );
+                let corner = corners_along(m, lo, hi).0;
                 if m.dot(corner - a) >= -eps || cur.iter().all(|p| m.dot(*p - a) >= -eps) {
                     continue;
                 }
@@ -493,7 +490,7 @@ impl Region {
                 continue;
             }
             let piece = &self.pts[pc.start as usize..pc.end as usize];
-            let relation = relation_to(piece, &self.edges, eps);
+            let relation = relation_to(piece, (plo, phi), &self.edges, eps);
             if relation == Relation::Apart || separated_by_own_edges(piece, s.iter().copied(), eps)
             {
                 k += 1;
@@ -565,26 +562,56 @@ enum Relation {
 }
 
 /// One pass over the edges decides both: apart when the piece lies wholly outside one
-/// edge, inside when wholly inside all.
-fn relation_to(piece: &[DVec2], edges: &[(DVec2, DVec2)], eps: f64) -> Relation {
+/// edge, inside when wholly inside all. The piece's bounds `(lo, hi)` decide most edges
+/// of a many-sided polygon without visiting its vertices.
+fn relation_to(
+    piece: &[DVec2],
+    (lo, hi): (DVec2, DVec2),
+    edges: &[(DVec2, DVec2)],
+    eps: f64,
+) -> Relation {
     let mut inside = true;
     for &(a, m) in edges {
-        let (lo, hi) = piece
+        // the bounding box's corners lowest and highest along m
+        let (low, high) = corners_along(m, lo, hi);
+        if m.dot(low - a) >= -eps {
+            continue; // inside this edge
+        }
+        if m.dot(high - a) <= eps {
+            return Relation::Apart;
+        }
+        let (l, h) = piece
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
                 let v = m.dot(*p - a);
                 (l.min(v), h.max(v))
             });
-        if hi <= eps {
+        if h <= eps {
             return Relation::Apart;
         }
-        inside &= lo >= -eps;
+        inside &= l >= -eps;
     }
     if inside {
         Relation::Inside
     } else {
         Relation::Crossing
     }
+}
+
+/// The corners of the box `lo`..`hi` lowest and highest along `m`.
+#[inline]
+fn corners_along(m: DVec2, lo: DVec2, hi: DVec2) -> (DVec2, DVec2) {
+    let (lx, hx) = if m.x > 0.0 {
+        (lo.x, hi.x)
+    } else {
+        (hi.x, lo.x)
+    };
+    let (ly, hy) = if m.y > 0.0 {
+        (lo.y, hi.y)
+    } else {
+        (hi.y, lo.y)
+    };
+    (DVec2::new(lx, ly), DVec2::new(hx, hy))
 }
 
 fn bounds(p: &[DVec2]) -> (DVec2, DVec2) {

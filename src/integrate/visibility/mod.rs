@@ -141,7 +141,7 @@ struct Patch {
 }
 
 /// Relation of a receiver patch to an occluder patch's planes.
-#[derive(Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Side {
     /// Every receiver vertex on or in front of every occluder face plane.
     Front,
@@ -316,6 +316,12 @@ impl Visibility {
                 patch_of(&geoms[range.start as usize..range.end as usize], range)
             })
             .collect();
+        let mut parts = if mode == VisibilityMode::Adaptive && scene.clip_shadows {
+            convex_parts(mesh, faces, tol)
+        } else {
+            Vec::new()
+        };
+        let within_part = PatchWithinPart::new(&patches, &parts, nf);
         let candidates: Vec<Vec<(u32, Side)>> = if mode == VisibilityMode::Centroid {
             Vec::new()
         } else {
@@ -344,6 +350,9 @@ impl Visibility {
                                 return None;
                             }
                             let q_vertices = &patch_vertices[q];
+                            if let Some(side) = within_part.relation(q, p as usize) {
+                                return Some((p, side));
+                            }
                             Some((p, relation(&geoms, &patches[q], q_vertices, p_faces, tol)))
                         })
                         .collect()
@@ -355,11 +364,6 @@ impl Visibility {
                 g.vertices = Vec::new();
             }
         }
-        let mut parts = if mode == VisibilityMode::Adaptive && scene.clip_shadows {
-            convex_parts(mesh, faces, tol)
-        } else {
-            Vec::new()
-        };
         // A part's hull needs only its faces' corners: a subdivided side adds none.
         for part in &mut parts {
             let mut corners: Vec<DVec3> = part
@@ -1192,6 +1196,45 @@ fn reaches_front(o: &FaceGeom, n: DVec3, p: DVec3, tol: f64) -> bool {
     o.vertices.iter().any(|v| n.dot(*v - p) > tol)
 }
 
+/// Per patch: the convex part all its faces belong to, and whether the part lies in
+/// front of every one of them (`hull_ahead`, a dish's concave side) or behind every one.
+struct PatchWithinPart(Vec<Option<(u32, bool)>>);
+
+impl PatchWithinPart {
+    fn new(patches: &[Patch], parts: &[ConvexPart], faces: usize) -> PatchWithinPart {
+        let mut of = vec![None; faces];
+        for (k, part) in parts.iter().enumerate() {
+            for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
+                of[f as usize] = Some((k as u32, ahead));
+            }
+        }
+        PatchWithinPart(
+            patches
+                .iter()
+                .map(|p| {
+                    let first = of[p.faces.start as usize]?;
+                    p.faces
+                        .clone()
+                        .all(|f| of[f as usize] == Some(first))
+                        .then_some(first)
+                })
+                .collect(),
+        )
+    }
+
+    /// [`relation`] of patch `q` to the planes of patch `p` where both lie in one convex
+    /// part in front of all of p's faces: every vertex of the part lies in front of or
+    /// within the tolerance of each of its faces' planes (what [`convex_parts`] checked,
+    /// by the same test), so q's do, and q is in front. (Behind would need one vertex
+    /// beyond the tolerance, which the check does not record.)
+    fn relation(&self, q: usize, p: usize) -> Option<Side> {
+        match (self.0[q], self.0[p]) {
+            (Some((a, true)), Some((b, true))) if a == b => Some(Side::Front),
+            _ => None,
+        }
+    }
+}
+
 /// Where the receiver faces lie relative to every plane of the occluder faces.
 fn relation(
     geoms: &[FaceGeom],
@@ -1531,6 +1574,36 @@ mod tests {
             overruled * 100 < compared,
             "{overruled} of {compared} overruled"
         );
+    }
+
+    #[test]
+    fn patches_within_one_convex_part_relate_as_testing_their_vertices_says() {
+        // The shortcut must give what the vertex test gives, exactly: candidates (and so
+        // light curves) stay the same to the last bit.
+        for mesh in [builtin::box_wing_with(8, 24, 0), cluttered_box_wing()] {
+            let vis = visibility_of(mesh);
+            let within = PatchWithinPart::new(&vis.patches, &vis.parts, vis.faces.len());
+            let mut shortcut = 0;
+            for q in 0..vis.patches.len() {
+                let mut v: Vec<DVec3> = vis.patches[q]
+                    .faces
+                    .clone()
+                    .flat_map(|f| vis.faces[f as usize].vertices.iter().copied())
+                    .collect();
+                sort_dedup(&mut v);
+                let points = Points::new(&v);
+                for p in 0..vis.patches.len() {
+                    if let Some(side) = within.relation(q, p) {
+                        let p_faces = &vis.patches[p].faces;
+                        let tested =
+                            relation(&vis.faces, &vis.patches[q], &points, p_faces, vis.tol);
+                        assert_eq!(side, tested, "patches {q} and {p}");
+                        shortcut += 1;
+                    }
+                }
+            }
+            assert!(shortcut > 10, "{shortcut}");
+        }
     }
 
     #[test]

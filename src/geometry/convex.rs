@@ -480,13 +480,29 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             if work > PART_WORK_LIMIT {
                 return None;
             }
-            // faces × vertices: the fine dish's 6,144 faces take tens of ms, so in parallel
+            // Per face: which side the part lies on (its vertices' mean says, when clear of
+            // the plane), then that no vertex lies beyond the plane on the other, by the
+            // ball tree; in parallel.
             let points = super::mesh::Points::new(&vertices);
+            let tree = super::mesh::PointTree::new(&vertices);
+            let mean = vertices.iter().sum::<glam::DVec3>() / vertices.len() as f64;
+            // well over the rounding of a height (~1e-16 of the coordinates)
+            let slack = 1e-4 * tol;
             let hull_ahead: Vec<bool> = fs
                 .par_iter()
                 .map(|&f| {
                     let face = &faces.faces[f as usize];
-                    let (ahead, behind) = points.sides(face.normal, face.centroid, tol);
+                    let (n, c) = (face.normal, face.centroid);
+                    let h = n.dot(mean - c);
+                    // the mean's height is the vertices' mean height, to rounding far
+                    // below the tolerance: beyond twice it, some vertex is beyond it
+                    let (ahead, behind) = if h < -2.0 * tol {
+                        (tree.any_beyond(n, c, tol, slack), true)
+                    } else if h > 2.0 * tol {
+                        (true, tree.any_beyond(-n, c, tol, slack))
+                    } else {
+                        points.sides(n, c, tol)
+                    };
                     // on its hull's boundary unless vertices lie on both sides
                     (!(ahead && behind)).then_some(ahead)
                 })

@@ -115,3 +115,157 @@ impl Points {
         (ahead, behind)
     }
 }
+
+/// Points in a tree of boxes, to show that none lies beyond a plane without testing each:
+/// a box wholly on the near side is passed over. Proving a convex part's faces (every
+/// vertex on one side of every face's plane) visits, per face, the boxes near its plane.
+/// Boxes, not balls: a shallow dish lies within a ball's radius of every tangent plane,
+/// but its boxes are flat.
+#[derive(Debug, Clone, Default)]
+pub struct PointTree {
+    /// The points in tree order: each node covers a range.
+    points: Points,
+    nodes: Vec<PointNode>,
+}
+
+#[derive(Debug, Clone)]
+struct PointNode {
+    /// Centre and half extents of the node's bounding box, m.
+    centre: DVec3,
+    half: DVec3,
+    start: u32,
+    end: u32,
+    /// Index of the second child (the first is the next node); 0 for a leaf.
+    second: u32,
+}
+
+/// Points per leaf: below this a ball test saves less than it costs.
+const TREE_LEAF: usize = 16;
+
+impl PointTree {
+    pub fn new(points: &[DVec3]) -> PointTree {
+        let mut order: Vec<DVec3> = points.to_vec();
+        let mut nodes = Vec::with_capacity(2 * points.len() / TREE_LEAF + 1);
+        if !order.is_empty() {
+            let n = order.len();
+            split_points(&mut order, 0, n, &mut nodes);
+        }
+        PointTree {
+            points: Points::new(&order),
+            nodes,
+        }
+    }
+
+    /// Does some point lie more than `limit` (m) in front of the plane through `c` with
+    /// unit normal `n` — its height `n·(p − c)` rounded as [`Points::sides`] rounds it?
+    /// `slack` (m) must exceed the rounding of a height (a ball is passed over when its
+    /// bound is below `limit − slack`), so the answer is exactly that of testing every
+    /// point.
+    pub fn any_beyond(&self, n: DVec3, c: DVec3, limit: f64, slack: f64) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = vec![0usize];
+        while let Some(at) = stack.pop() {
+            let node = &self.nodes[at];
+            if n.dot(node.centre - c) + n.abs().dot(node.half) <= limit - slack {
+                continue;
+            }
+            if node.second == 0 {
+                let (start, end) = (node.start as usize, node.end as usize);
+                let (x, y, z) = (&self.points.x, &self.points.y, &self.points.z);
+                if (start..end)
+                    .any(|i| (n.x * (x[i] - c.x) + n.y * (y[i] - c.y)) + n.z * (z[i] - c.z) > limit)
+                {
+                    return true;
+                }
+                continue;
+            }
+            stack.push(node.second as usize);
+            stack.push(at + 1);
+        }
+        false
+    }
+}
+
+/// Builds the nodes over `points[start..end]` (reordered): median splits along the widest
+/// axis.
+fn split_points(points: &mut [DVec3], start: usize, end: usize, nodes: &mut Vec<PointNode>) {
+    let part = &mut points[start..end];
+    let (lo, hi) = part
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let at = nodes.len();
+    nodes.push(PointNode {
+        centre: 0.5 * (lo + hi),
+        // a little over, by the rounding of the centre: a bound must not fall short
+        half: 0.5 * (hi - lo) + lo.abs().max(hi.abs()) * (4.0 * f64::EPSILON),
+        start: start as u32,
+        end: end as u32,
+        second: 0,
+    });
+    if part.len() <= TREE_LEAF {
+        return;
+    }
+    let axis = (hi - lo).max_position();
+    let mid = part.len() / 2;
+    part.select_nth_unstable_by(mid, |a, b| a[axis].total_cmp(&b[axis]));
+    split_points(points, start, start + mid, nodes);
+    nodes[at].second = nodes.len() as u32;
+    split_points(points, start + mid, end, nodes);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_point_tree_answers_as_testing_every_point_does() {
+        // Exactly, also where a point lies at the limit: planes through points of the set
+        // (limit 0 and ±1e-12), among them supporting planes (every point on or behind),
+        // on a shallow dish, a flat grid and a cloud far from the origin (where the boxes'
+        // centres round).
+        let mut rnd = crate::test_rng(5);
+        let dish: Vec<DVec3> = (0..3000)
+            .map(|_| {
+                let (x, y) = (2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
+                DVec3::new(x, y, 0.3 * (x * x + y * y))
+            })
+            .collect();
+        let flat: Vec<DVec3> = (0..40 * 40)
+            .map(|i| DVec3::new((i % 40) as f64 * 0.025, (i / 40) as f64 * 0.025, 1.0))
+            .collect();
+        let far: Vec<DVec3> = (0..500)
+            .map(|_| DVec3::new(1e6 + rnd(), -3e5 + rnd(), 7e5 + rnd()))
+            .collect();
+        let mut checked = [0usize; 2];
+        for points in [dish, flat, far] {
+            let (tree, all) = (PointTree::new(&points), Points::new(&points));
+            for _ in 0..300 {
+                let n =
+                    DVec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0).normalize();
+                // through a random point, or the one farthest along n (none beyond)
+                let c = if rnd() < 0.5 {
+                    points[(rnd() * points.len() as f64) as usize]
+                } else {
+                    *points
+                        .iter()
+                        .max_by(|a, b| n.dot(**a).total_cmp(&n.dot(**b)))
+                        .expect("points")
+                };
+                for limit in [0.0, 1e-12, -1e-12] {
+                    let (ahead, _) = all.sides(n, c, limit);
+                    assert_eq!(
+                        tree.any_beyond(n, c, limit, 1e-13),
+                        ahead,
+                        "{n} {c} {limit}"
+                    );
+                    checked[usize::from(ahead)] += 1;
+                }
+            }
+        }
+        assert!(checked.iter().all(|&k| k > 100), "{checked:?}");
+    }
+}

@@ -273,9 +273,10 @@ impl Visibility {
         let nf = faces.len();
         let k = ((nf as f64).sqrt().round() as usize).clamp(1, 1024);
         let per_patch = nf.div_ceil(k);
+        // per face (pieces and outlines): in parallel
         let mut geoms: Vec<FaceGeom> = faces
             .faces
-            .iter()
+            .par_iter()
             .enumerate()
             .map(|(i, f)| {
                 let mut vertices: Vec<DVec3> = f

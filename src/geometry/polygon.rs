@@ -152,7 +152,7 @@ impl HullIndices {
 }
 
 /// The part of a plane (a face) still lit and seen, as disjoint convex pieces.
-#[derive(Debug, Default, Clone)]
+#[derive(Debug, Default)]
 pub struct Region {
     /// Vertices of the pieces, each piece counter-clockwise. Append-only until
     /// [`Region::reset`]: a piece that is cut leaves its old vertices unused, so pieces
@@ -196,6 +196,25 @@ const MAX_DEFERRED: usize = 3;
 /// Too many pieces: the shadows cut the face up so finely that sampling is cheaper.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TooComplex;
+
+impl Clone for Region {
+    fn clone(&self) -> Region {
+        let mut r = Region::default();
+        r.clone_from(self);
+        r
+    }
+
+    /// Copies the region into this one's buffers (no allocation once they have grown):
+    /// called per face and direction. The scratch buffers are not copied.
+    fn clone_from(&mut self, source: &Region) {
+        self.pts.clone_from(&source.pts);
+        self.pieces.clone_from(&source.pieces);
+        self.deferred_edges.clone_from(&source.deferred_edges);
+        self.deferred_ends.clone_from(&source.deferred_ends);
+        self.deferred_bounds.clone_from(&source.deferred_bounds);
+        (self.lo, self.hi, self.eps) = (source.lo, source.hi, source.eps);
+    }
+}
 
 impl Region {
     /// Empties the region; `scale` (m, the face's size) sets what counts as zero length.

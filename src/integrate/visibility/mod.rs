@@ -205,6 +205,8 @@ pub struct Cache {
     stamp: Stamp,
     /// Per direction, per part: a cap's face states along it (built on first use).
     cap_states: [Vec<CapStates>; 3],
+    /// Buffers for a face's possible blockers per direction (see [`Sampler`]).
+    blockers: [Vec<Blocker>; 3],
 }
 
 /// Buffers for [`Visibility::exact_area`].
@@ -568,7 +570,35 @@ impl Visibility {
         // errors cancel in part: K = 8 keeps the measured error at about a third of the
         // tolerance (box-wing and trough against converged references).
         let min_size = LEAF_SIZE_FACTOR * budget / f.area.sqrt();
-        let mut s = Sampler::new(&self.occluder, n, f.centroid, directions, min_size, budget);
+        // the blocker lists' buffers are the cache's, kept from face to face
+        let mut blockers = std::mem::take(&mut cache.blockers);
+        blockers.iter_mut().for_each(Vec::clear);
+        let mut s = Sampler::new(
+            &self.occluder,
+            n,
+            f.centroid,
+            directions,
+            min_size,
+            budget,
+            blockers,
+        );
+        let areas = self.shadowed_area(cache, face, side, &directions, &mut s);
+        cache.blockers = std::mem::take(&mut s.blockers);
+        areas
+    }
+
+    /// [`Visibility::visible_area`] for a face that its own cap's lid does not decide
+    /// alone: blockers searched, then clipped exactly, else sampled by `s`.
+    fn shadowed_area(
+        &self,
+        cache: &mut Cache,
+        face: usize,
+        side: f64,
+        directions: &[Option<DVec3>; 3],
+        s: &mut Sampler,
+    ) -> (f64, f64, u64) {
+        let f = &self.faces[face];
+        let n = f.normal * side;
         if self.mode == VisibilityMode::Centroid {
             for c in &f.pieces {
                 let bits = s.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
@@ -578,11 +608,11 @@ impl Visibility {
             }
             return (s.a_sun, s.a_earth, s.rays);
         }
-        let lids = self.collect_blockers(cache, face, side, &directions, true, &mut s.blockers);
+        let lids = self.collect_blockers(cache, face, side, directions, true, &mut s.blockers);
         if lids[0] == LidState::Closed {
             return (0.0, 0.0, 0); // the face's own cap hides it
         }
-        let open = open_directions(&directions, &lids);
+        let open = open_directions(directions, &lids);
         let full_area = f.pieces_area;
         if s.blockers.iter().all(Vec::is_empty)
             && cache.exact.part_hits.iter().all(Vec::is_empty)
@@ -600,7 +630,7 @@ impl Visibility {
             }
             // the sampler needs every blocker face by face: the cap's own and the parts'
             s.blockers.iter_mut().for_each(Vec::clear);
-            self.collect_blockers(cache, face, side, &directions, false, &mut s.blockers);
+            self.collect_blockers(cache, face, side, directions, false, &mut s.blockers);
         }
         for piece in &f.pieces {
             s.refine(*piece, None, triangle_area(piece), 0, self.tol);

@@ -34,13 +34,14 @@ impl<'a> Sampler<'a> {
         dirs: [Option<DVec3>; 3],
         min_size: f64,
         budget: f64,
+        blockers: [Vec<Blocker>; 3],
     ) -> Self {
         Sampler {
             occluder,
             n,
             centre,
             dirs,
-            blockers: Default::default(),
+            blockers,
             min_size,
             budget,
             rays: 0,

@@ -482,7 +482,7 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             }
             // Per face: which side the part lies on (its vertices' mean says, when clear of
             // the plane), then that no vertex lies beyond the plane on the other, by the
-            // ball tree; in parallel.
+            // tree of boxes; in parallel.
             let points = super::mesh::Points::new(&vertices);
             let tree = super::mesh::PointTree::new(&vertices);
             let mean = vertices.iter().sum::<glam::DVec3>() / vertices.len() as f64;

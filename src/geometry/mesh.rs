@@ -107,13 +107,21 @@ impl Points {
     /// `n·(p − c)` rounded as [`DVec3::dot`] rounds them.
     pub fn sides(&self, n: DVec3, c: DVec3, tol: f64) -> (bool, bool) {
         let (mut ahead, mut behind) = (false, false);
-        for ((x, y), z) in self.x.iter().zip(&self.y).zip(&self.z) {
-            let h = (n.x * (x - c.x) + n.y * (y - c.y)) + n.z * (z - c.z);
+        for ((&x, &y), &z) in self.x.iter().zip(&self.y).zip(&self.z) {
+            let h = height(n, c, x, y, z);
             ahead |= h > tol;
             behind |= h < -tol;
         }
         (ahead, behind)
     }
+}
+
+/// Height (m) of the point (x, y, z) above the plane through `c` with unit normal `n`,
+/// rounded as [`DVec3::dot`] rounds it: one expression for every test that must agree
+/// to the last bit.
+#[inline(always)]
+fn height(n: DVec3, c: DVec3, x: f64, y: f64, z: f64) -> f64 {
+    (n.x * (x - c.x) + n.y * (y - c.y)) + n.z * (z - c.z)
 }
 
 /// Points in a tree of boxes, to show that none lies beyond a plane without testing each:
@@ -139,7 +147,7 @@ struct PointNode {
     second: u32,
 }
 
-/// Points per leaf: below this a ball test saves less than it costs.
+/// Points per leaf: below this a box test saves less than it costs.
 const TREE_LEAF: usize = 16;
 
 impl PointTree {
@@ -158,7 +166,7 @@ impl PointTree {
 
     /// Does some point lie more than `limit` (m) in front of the plane through `c` with
     /// unit normal `n` — its height `n·(p − c)` rounded as [`Points::sides`] rounds it?
-    /// `slack` (m) must exceed the rounding of a height (a ball is passed over when its
+    /// `slack` (m) must exceed the rounding of a height (a box is passed over when its
     /// bound is below `limit − slack`), so the answer is exactly that of testing every
     /// point.
     pub fn any_beyond(&self, n: DVec3, c: DVec3, limit: f64, slack: f64) -> bool {
@@ -174,9 +182,7 @@ impl PointTree {
             if node.second == 0 {
                 let (start, end) = (node.start as usize, node.end as usize);
                 let (x, y, z) = (&self.points.x, &self.points.y, &self.points.z);
-                if (start..end)
-                    .any(|i| (n.x * (x[i] - c.x) + n.y * (y[i] - c.y)) + n.z * (z[i] - c.z) > limit)
-                {
+                if (start..end).any(|i| height(n, c, x[i], y[i], z[i]) > limit) {
                     return true;
                 }
                 continue;

@@ -276,12 +276,7 @@ impl Region {
             let mut crossing = 0u32;
             let mut covered = false;
             for k in 0..self.deferred_ends.len() {
-                let (lo, hi) = self.deferred_bounds[k];
-                if pc.lo.x >= hi.x - eps
-                    || pc.lo.y >= hi.y - eps
-                    || pc.hi.x <= lo.x + eps
-                    || pc.hi.y <= lo.y + eps
-                {
+                if boxes_apart((pc.lo, pc.hi), self.deferred_bounds[k], eps) {
                     continue;
                 }
                 match relation_to(piece, (pc.lo, pc.hi), self.deferred(k), eps) {
@@ -335,15 +330,8 @@ impl Region {
         self.cur.clear();
         let polygon = &self.deferred_edges[self.deferred_range(first)];
         self.cur.extend(polygon.iter().map(|&(a, _)| a));
-        self.edges.clear();
         let piece = &self.pts[pc.start as usize..pc.end as usize];
-        for j in 0..piece.len() {
-            let (p, q) = (piece[j], piece[(j + 1) % piece.len()]);
-            let len = (q - p).length();
-            if len > eps {
-                self.edges.push((p, (q - p).perp() / len));
-            }
-        }
+        inward_edges(piece, true, eps, &mut self.edges);
         let (mut lo, mut hi) = bounds(&self.cur);
         let mut cut = |cur: &mut Vec<DVec2>,
                        inside: &mut Vec<DVec2>,
@@ -389,16 +377,7 @@ impl Region {
     /// clockwise): a point on each and its unit inward normal; edges shorter than `eps` are
     /// left out.
     fn set_edges(&mut self, s: &[DVec2], ccw: bool) {
-        let vertex = |i: usize| if ccw { s[i] } else { s[s.len() - 1 - i] };
-        self.edges.clear();
-        for i in 0..s.len() {
-            let (p, q) = (vertex(i), vertex((i + 1) % s.len()));
-            let e = q - p;
-            let len = e.length();
-            if len > self.eps {
-                self.edges.push((p, e.perp() / len));
-            }
-        }
+        inward_edges(s, ccw, self.eps, &mut self.edges);
     }
 
     /// Keeps only the part inside the convex polygon `s` (either orientation): each piece
@@ -479,11 +458,7 @@ impl Region {
         }
         let (lo, hi) = bounds(s);
         let eps = self.eps;
-        if lo.x >= self.hi.x - eps
-            || lo.y >= self.hi.y - eps
-            || hi.x <= self.lo.x + eps
-            || hi.y <= self.lo.y + eps
-        {
+        if boxes_apart((lo, hi), (self.lo, self.hi), eps) {
             return Ok(()); // misses every piece
         }
         self.set_edges(s, a > 0.0);
@@ -500,11 +475,7 @@ impl Region {
         while k < live {
             let pc = self.pieces[k];
             let (plo, phi) = (pc.lo, pc.hi);
-            if plo.x >= hi.x - eps
-                || plo.y >= hi.y - eps
-                || phi.x <= lo.x + eps
-                || phi.y <= lo.y + eps
-            {
+            if boxes_apart((plo, phi), (lo, hi), eps) {
                 k += 1;
                 continue;
             }
@@ -631,6 +602,33 @@ fn corners_along(m: DVec2, lo: DVec2, hi: DVec2) -> (DVec2, DVec2) {
         (hi.y, lo.y)
     };
     (DVec2::new(lx, ly), DVec2::new(hx, hy))
+}
+
+/// Do the boxes `a` and `b` (lo, hi) overlap by no more than `eps` (m) along x or y?
+fn boxes_apart(a: (DVec2, DVec2), b: (DVec2, DVec2), eps: f64) -> bool {
+    a.0.x >= b.1.x - eps || a.0.y >= b.1.y - eps || a.1.x <= b.0.x + eps || a.1.y <= b.0.y + eps
+}
+
+/// The edges of convex `poly` (counter-clockwise when `ccw`, else clockwise) into `out`:
+/// a point on each and its unit inward normal; edges no longer than `eps` (m) are left
+/// out.
+fn inward_edges(poly: &[DVec2], ccw: bool, eps: f64, out: &mut Vec<(DVec2, DVec2)>) {
+    let vertex = |i: usize| {
+        if ccw {
+            poly[i]
+        } else {
+            poly[poly.len() - 1 - i]
+        }
+    };
+    out.clear();
+    for i in 0..poly.len() {
+        let (p, q) = (vertex(i), vertex((i + 1) % poly.len()));
+        let e = q - p;
+        let len = e.length();
+        if len > eps {
+            out.push((p, e.perp() / len));
+        }
+    }
 }
 
 fn bounds(p: &[DVec2]) -> (DVec2, DVec2) {

@@ -123,6 +123,27 @@ impl FaceGeom {
             .into_iter()
             .chain(pieces.into_iter().flatten().map(|t| &t[..]))
     }
+
+    /// The face as one convex polygon (its outline, or its one triangle); empty when it
+    /// is none.
+    fn convex(&self) -> &[DVec3] {
+        if self.outline.is_empty() && self.pieces.len() == 1 {
+            &self.pieces[0][..]
+        } else {
+            &self.outline[..]
+        }
+    }
+}
+
+/// The distinct vertices of a patch's faces.
+fn patch_points(geoms: &[FaceGeom], patch: &Patch) -> Points {
+    let mut v: Vec<DVec3> = patch
+        .faces
+        .clone()
+        .flat_map(|f| geoms[f as usize].vertices.iter().copied())
+        .collect();
+    sort_dedup(&mut v);
+    Points::new(&v)
 }
 
 /// Area of a triangle, m².
@@ -332,15 +353,7 @@ impl Visibility {
             // faces' own vertex lists, and no more work than their bounding spheres.
             let patch_vertices: Vec<Points> = patches
                 .par_iter()
-                .map(|p| {
-                    let mut v: Vec<DVec3> = p
-                        .faces
-                        .clone()
-                        .flat_map(|f| geoms[f as usize].vertices.iter().copied())
-                        .collect();
-                    sort_dedup(&mut v);
-                    Points::new(&v)
-                })
+                .map(|p| patch_points(&geoms, p))
                 .collect();
             (0..patches.len())
                 .into_par_iter()
@@ -652,11 +665,7 @@ impl Visibility {
     ) -> Option<f64> {
         let f = &self.faces[face];
         let lid = self.parts[self.part_of[face] as usize].lid.as_ref()?;
-        let convex = if f.outline.is_empty() && f.pieces.len() == 1 {
-            &f.pieces[0][..]
-        } else {
-            &f.outline[..]
-        };
+        let convex = f.convex();
         let d = above_horizon(d, n);
         let dl = d.dot(lid.normal);
         if convex.is_empty() || dl <= 0.0 {
@@ -925,11 +934,7 @@ impl Visibility {
                     .as_ref()
                     .expect("caps have lids");
                 x.shadow.clear();
-                let convex = if f.outline.is_empty() && f.pieces.len() == 1 {
-                    &f.pieces[0][..]
-                } else {
-                    &f.outline[..]
-                };
+                let convex = f.convex();
                 if convex.is_empty() {
                     x.shadow.extend(lid.corners.iter().map(|y| project(*y).0));
                 } else {
@@ -1530,12 +1535,7 @@ mod tests {
         let vis = visibility_of(builtin::box_wing_with(8, 24, 0));
         let largest = vis.faces.iter().map(|g| g.area).fold(0.0, f64::max);
         let mut rnd = crate::test_rng(9);
-        let mut unit = || {
-            let z = 2.0 * rnd() - 1.0;
-            let a = std::f64::consts::TAU * rnd();
-            let s = (1.0 - z * z).sqrt();
-            DVec3::new(s * a.cos(), s * a.sin(), z)
-        };
+        let mut unit = || random_unit(&mut rnd);
         let mut cache = Cache::default();
         let (mut compared, mut one_clipped, mut partial, mut overruled) = (0, 0, 0, 0);
         for _ in 0..60 {
@@ -1565,17 +1565,7 @@ mod tests {
                     if (a_sun - b_sun).abs() > tol || (a_earth - b_earth).abs() > tol {
                         // where the two disagree (the plain clipper's slivers at grazing
                         // directions), rays decide, as in the test below
-                        let (r_sun, r_earth) = sampled(&vis, i, side, &dirs, 4000);
-                        let sigma = |a: f64| {
-                            let p = (a / g.area).clamp(0.0, 1.0);
-                            4.0 * (p * (1.0 - p) / 4000.0).sqrt() * g.area + 2e-3 * g.area
-                        };
-                        assert!(
-                            (a_sun - r_sun).abs() <= sigma(r_sun)
-                                && (a_earth - r_earth).abs() <= sigma(r_earth),
-                            "face {i} side {side}: lid {a_sun}, {a_earth}; face by face \
-                             {b_sun}, {b_earth}; rays {r_sun}, {r_earth}"
-                        );
+                        rays_decide(&vis, i, side, &dirs, (a_sun, a_earth), (b_sun, b_earth));
                         overruled += 1;
                     }
                     compared += 1;
@@ -1616,13 +1606,7 @@ mod tests {
             let within = PatchWithinPart::new(&vis.patches, &vis.parts, vis.faces.len());
             let mut shortcut = 0;
             for q in 0..vis.patches.len() {
-                let mut v: Vec<DVec3> = vis.patches[q]
-                    .faces
-                    .clone()
-                    .flat_map(|f| vis.faces[f as usize].vertices.iter().copied())
-                    .collect();
-                sort_dedup(&mut v);
-                let points = Points::new(&v);
+                let points = patch_points(&vis.faces, &vis.patches[q]);
                 for p in 0..vis.patches.len() {
                     if let Some(side) = within.relation(q, p) {
                         let p_faces = &vis.patches[p].faces;
@@ -1667,12 +1651,7 @@ mod tests {
         );
         let largest = vis.faces.iter().map(|g| g.area).fold(0.0, f64::max);
         let mut rnd = crate::test_rng(3);
-        let mut unit = || {
-            let z = 2.0 * rnd() - 1.0;
-            let a = std::f64::consts::TAU * rnd();
-            let s = (1.0 - z * z).sqrt();
-            DVec3::new(s * a.cos(), s * a.sin(), z)
-        };
+        let mut unit = || random_unit(&mut rnd);
         let (mut compared, mut shadowed, mut dark, mut overruled) = (0, 0, 0, 0);
         let mut cache = Cache::default();
         for _ in 0..40 {
@@ -1698,19 +1677,8 @@ mod tests {
                     let tol = 1e-7 * largest;
                     let b_sun = if dirs.sun.is_some() { b_sun } else { a_sun };
                     if (a_sun - b_sun).abs() > tol || (a_earth - b_earth).abs() > tol {
-                        // where the two disagree, rays decide: the whole-part value must
-                        // be theirs (within 4σ of 4,000 samples, plus f32 rays' slack)
-                        let (r_sun, r_earth) = sampled(&vis, i, side, &dirs, 4000);
-                        let sigma = |a: f64| {
-                            let p = (a / g.area).clamp(0.0, 1.0);
-                            4.0 * (p * (1.0 - p) / 4000.0).sqrt() * g.area + 2e-3 * g.area
-                        };
-                        assert!(
-                            (a_sun - r_sun).abs() <= sigma(r_sun)
-                                && (a_earth - r_earth).abs() <= sigma(r_earth),
-                            "face {i} side {side}: whole {a_sun}, {a_earth}; face by face \
-                             {b_sun}, {b_earth}; rays {r_sun}, {r_earth}"
-                        );
+                        // where the two disagree, rays decide
+                        rays_decide(&vis, i, side, &dirs, (a_sun, a_earth), (b_sun, b_earth));
                         overruled += 1;
                     }
                     compared += 1;
@@ -1729,6 +1697,38 @@ mod tests {
         assert!(
             overruled * 100 < compared,
             "{overruled} of {compared} overruled"
+        );
+    }
+
+    /// A direction uniform on the sphere.
+    fn random_unit(rnd: &mut impl FnMut() -> f64) -> DVec3 {
+        let z = 2.0 * rnd() - 1.0;
+        let a = std::f64::consts::TAU * rnd();
+        let s = (1.0 - z * z).sqrt();
+        DVec3::new(s * a.cos(), s * a.sin(), z)
+    }
+
+    /// Where the engine's areas `a` and plain face-by-face clipping's `b` (sunlit,
+    /// earthlit, m²) disagree, rays decide: the engine's must be theirs, within 4σ of
+    /// 4,000 samples plus f32 rays' slack.
+    fn rays_decide(
+        vis: &Visibility,
+        i: usize,
+        side: f64,
+        dirs: &Uncertain,
+        (a_sun, a_earth): (f64, f64),
+        (b_sun, b_earth): (f64, f64),
+    ) {
+        let area = vis.faces[i].area;
+        let (r_sun, r_earth) = sampled(vis, i, side, dirs, 4000);
+        let sigma = |a: f64| {
+            let p = (a / area).clamp(0.0, 1.0);
+            4.0 * (p * (1.0 - p) / 4000.0).sqrt() * area + 2e-3 * area
+        };
+        assert!(
+            (a_sun - r_sun).abs() <= sigma(r_sun) && (a_earth - r_earth).abs() <= sigma(r_earth),
+            "face {i} side {side}: engine {a_sun}, {a_earth}; face by face {b_sun}, {b_earth}; \
+             rays {r_sun}, {r_earth}"
         );
     }
 

@@ -401,7 +401,6 @@ const PART_WORK_LIMIT: usize = 100_000_000;
 /// (vertices welded by position), each part checked exactly — every vertex on one side
 /// of every face's plane, within `tol` (m), and its open edges in one plane.
 pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
-    use std::collections::HashMap;
     let welded = mesh.welded_ids();
     let mut face_of = vec![0u32; mesh.triangles.len()];
     for (i, f) in faces.faces.iter().enumerate() {
@@ -409,17 +408,18 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             face_of[t as usize] = i as u32;
         }
     }
-    // directed edges by their welded ends: a shared edge joins two faces
-    let mut edges: HashMap<(u32, u32), Vec<(u32, bool)>> = HashMap::new();
+    // directed edges by their welded ends, sorted so that each edge's uses are side by
+    // side (a sort, not a hash map of lists: no allocation per edge): a shared edge joins
+    // two faces
+    let mut edges: Vec<((u32, u32), u32, bool)> = Vec::with_capacity(3 * mesh.triangles.len());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
-            edges
-                .entry((a.min(b), a.max(b)))
-                .or_default()
-                .push((face_of[t], a < b));
+            edges.push(((a.min(b), a.max(b)), face_of[t], a < b));
         }
     }
+    edges.par_sort_unstable();
+    let uses = || edges.chunk_by(|x, y| x.0 == y.0);
     let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
     fn root(p: &mut [u32], mut x: u32) -> u32 {
         while p[x as usize] != x {
@@ -428,44 +428,39 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
         }
         x
     }
-    for adj in edges.values() {
+    for adj in uses() {
         for w in adj.windows(2) {
-            let (ra, rb) = (root(&mut parent, w[0].0), root(&mut parent, w[1].0));
+            let (ra, rb) = (root(&mut parent, w[0].1), root(&mut parent, w[1].1));
             parent[ra.max(rb) as usize] = ra.min(rb);
         }
     }
-    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
+    // each part under its least face, which is its root
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); faces.len()];
     for f in 0..faces.len() as u32 {
-        members.entry(root(&mut parent, f)).or_default().push(f);
+        members[root(&mut parent, f) as usize].push(f);
     }
     // open edges per part: an edge of a part that no other triangle of it uses the
-    // other way round (edges inside a merged face cancel like any other)
-    let mut open: HashMap<u32, Vec<(u32, u32)>> = HashMap::new();
-    let mut non_manifold: std::collections::HashSet<u32> = Default::default();
-    for ((a, b), adj) in &edges {
-        let part = root(&mut parent, adj[0].0);
-        match adj[..] {
-            // in the direction its triangle runs
-            [(_, forward)] => {
-                open.entry(part)
-                    .or_default()
-                    .push(if forward { (*a, *b) } else { (*b, *a) })
-            }
-            [(_, x), (_, y)] if x != y => {}
-            _ => {
-                non_manifold.insert(part); // used twice one way, or by three faces
-            }
+    // other way round (edges inside a merged face cancel like any other), in the
+    // direction its triangle runs; sorted, so the lid's corners start from the first
+    let mut open: Vec<Vec<(u32, u32)>> = vec![Vec::new(); faces.len()];
+    let mut non_manifold = vec![false; faces.len()];
+    for adj in uses() {
+        let ((a, b), face, _) = adj[0];
+        let part = root(&mut parent, face) as usize;
+        match adj {
+            [(_, _, forward)] => open[part].push(if *forward { (a, b) } else { (b, a) }),
+            [(_, _, x), (_, _, y)] if x != y => {}
+            _ => non_manifold[part] = true, // used twice one way, or by three faces
         }
     }
-    // in a fixed order: the lid's corners start from the first, and the same mesh must
-    // give the same light curve to the last bit whatever order the hash map iterates in
-    for edges in open.values_mut() {
+    for edges in &mut open {
         edges.sort_unstable();
     }
     let mut work = 0usize;
     let mut parts: Vec<ConvexPart> = members
         .into_iter()
-        .filter(|(root, fs)| fs.len() >= MIN_PART_FACES && !non_manifold.contains(root))
+        .enumerate()
+        .filter(|(root, fs)| fs.len() >= MIN_PART_FACES && !non_manifold[*root])
         .filter_map(|(root, fs)| {
             let mut ids: Vec<u32> = fs
                 .iter()
@@ -508,7 +503,7 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
                 })
                 .collect::<Option<_>>()?;
             let mut lid = None;
-            if let Some(open) = open.get(&root) {
+            if let Some(open) = Some(&open[root]).filter(|o| !o.is_empty()) {
                 // the open side must be flat: Newell's normal of its edges, then distances
                 let p = mesh.vertices[open[0].0 as usize];
                 let n = open.iter().fold(glam::DVec3::ZERO, |acc, &(a, b)| {

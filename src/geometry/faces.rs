@@ -7,7 +7,7 @@
 use super::mesh::Mesh;
 use crate::radiometry::earth::orthonormal_basis;
 use glam::DVec3;
-use std::collections::HashMap;
+use rayon::prelude::*;
 
 /// One planar face.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,41 +49,44 @@ impl Faces {
         if merge {
             // Weld vertices by exact position so meshes with split vertices still merge.
             let canon = mesh.welded_ids();
-            let mut edges: HashMap<(u32, u32), u32> = HashMap::with_capacity(n * 3 / 2);
+            // Every triangle's edges by their welded ends, sorted: the triangles sharing an
+            // edge are then side by side, the first of them first (a sort, not a hash map:
+            // no allocation per edge, and in parallel).
+            let mut edges: Vec<(u32, u32, u32)> = Vec::with_capacity(3 * n);
             for (t, tri) in mesh.triangles.iter().enumerate() {
                 for k in 0..3 {
                     let a = canon[tri[k] as usize];
                     let b = canon[tri[(k + 1) % 3] as usize];
-                    let key = (a.min(b), a.max(b));
-                    match edges.get(&key) {
-                        Some(&other) => {
-                            let o = other as usize;
-                            if mesh.material_ids[o] == mesh.material_ids[t]
-                                && normals[o].dot(normals[t]) > SAME_NORMAL
-                            {
-                                let p = mesh.vertices[mesh.triangles[o][0] as usize];
-                                let q = mesh.corners(t);
-                                if q.iter().all(|v| normals[o].dot(*v - p).abs() <= plane_tol) {
-                                    union(&mut parent, o as u32, t as u32);
-                                }
-                            }
-                        }
-                        None => {
-                            edges.insert(key, t as u32);
+                    edges.push((a.min(b), a.max(b), t as u32));
+                }
+            }
+            edges.par_sort_unstable();
+            for shared in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+                let o = shared[0].2 as usize;
+                for &(_, _, t) in &shared[1..] {
+                    let t = t as usize;
+                    if mesh.material_ids[o] == mesh.material_ids[t]
+                        && normals[o].dot(normals[t]) > SAME_NORMAL
+                    {
+                        let p = mesh.vertices[mesh.triangles[o][0] as usize];
+                        let q = mesh.corners(t);
+                        if q.iter().all(|v| normals[o].dot(*v - p).abs() <= plane_tol) {
+                            union(&mut parent, o as u32, t as u32);
                         }
                     }
                 }
             }
         }
-        let mut index_of_root: HashMap<u32, usize> = HashMap::new();
+        // faces in the order of their first triangles (each root is its part's least)
+        let mut index_of_root = vec![u32::MAX; n];
         let mut groups: Vec<Vec<u32>> = Vec::new();
         for t in 0..n as u32 {
-            let r = find(&mut parent, t);
-            let g = *index_of_root.entry(r).or_insert_with(|| {
+            let r = find(&mut parent, t) as usize;
+            if index_of_root[r] == u32::MAX {
+                index_of_root[r] = groups.len() as u32;
                 groups.push(Vec::new());
-                groups.len() - 1
-            });
-            groups[g].push(t);
+            }
+            groups[index_of_root[r] as usize].push(t);
         }
         let faces = groups
             .into_iter()

@@ -1,6 +1,7 @@
 //! The triangle mesh in the body frame, in f64 metres.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// A validated triangle mesh: every index in range, every triangle non-degenerate,
 /// one material index per triangle.
@@ -29,16 +30,21 @@ impl Mesh {
     /// For each vertex, the first vertex at exactly the same position: ids that let meshes
     /// with split vertices (as OBJ exporters often write them) still share their edges.
     pub fn welded_ids(&self) -> Vec<u32> {
-        let mut first = std::collections::HashMap::new();
-        self.vertices
+        // sorted by position, then index: each run of one position starts with its first
+        let mut keyed: Vec<([u64; 3], u32)> = self
+            .vertices
             .iter()
             .enumerate()
-            .map(|(i, v)| {
-                *first
-                    .entry([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()])
-                    .or_insert(i as u32)
-            })
-            .collect()
+            .map(|(i, v)| ([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()], i as u32))
+            .collect();
+        keyed.par_sort_unstable();
+        let mut ids = vec![0u32; keyed.len()];
+        for run in keyed.chunk_by(|a, b| a.0 == b.0) {
+            for &(_, i) in run {
+                ids[i as usize] = run[0].1;
+            }
+        }
+        ids
     }
 
     /// Twice-area vector (b−a)×(c−a) of triangle `i`: its direction is the outward normal.

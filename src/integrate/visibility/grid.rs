@@ -232,6 +232,7 @@ mod tests {
             outline: Vec::new(),
             vertices: Vec::new(),
             part_shadows: Vec::new(),
+            covers: Default::default(),
             lid_side: [false; 2],
             lid_only: [false; 2],
             own_outside: [false; 2],

@@ -333,6 +333,8 @@ pub(super) struct Silhouette {
     /// Vertices that may lie on the silhouette, and their projections.
     keep: Vec<u32>,
     points: Vec<DVec2>,
+    /// The projection's corners on [`Silhouette::axes`] of `dir`, counter-clockwise, m.
+    outline: Vec<DVec2>,
 }
 
 impl Silhouette {
@@ -342,7 +344,7 @@ impl Silhouette {
         if self.dir == Some(d) {
             return;
         }
-        let (u, w) = crate::radiometry::earth::orthonormal_basis(d);
+        let (u, w) = Silhouette::axes(d);
         self.keep.clear();
         self.points.clear();
         for (i, (v, c)) in part.vertices.iter().zip(cones).enumerate() {
@@ -358,8 +360,182 @@ impl Silhouette {
         self.near.clear();
         self.near
             .extend(self.hull.near.iter().map(|&j| self.keep[j as usize]));
+        self.outline.clear();
+        self.outline
+            .extend(self.hull.corners.iter().map(|&j| self.points[j as usize]));
         self.dir = Some(d);
     }
+
+    /// The (u, w) axes across `dir` that [`Silhouette::cover`]'s projected corners use.
+    pub(super) fn axes(d: DVec3) -> (DVec3, DVec3) {
+        crate::radiometry::earth::orthonormal_basis(d)
+    }
+
+    /// How the part (seen along `dir`, its hull behind the planes `planes`) stands to the
+    /// convex hull of `corners` along `dir` (see [`Cover`]), given what its planes settled
+    /// ([`Planes::settle`]); `across` holds the corners projected on [`Silhouette::axes`].
+    /// Every test is by `margin` (m), beyond rounding and the hull's own slack.
+    pub(super) fn cover(&self, ahead: bool, across: &[DVec2], margin: f64) -> Cover {
+        let n = self.outline.len();
+        if n < 3 || across.is_empty() {
+            return Cover::Unknown;
+        }
+        let mut all_in = true;
+        for i in 0..n {
+            let (a, b) = (self.outline[i], self.outline[(i + 1) % n]);
+            let e = b - a;
+            // perp is the inward normal of a counter-clockwise outline
+            let (m, len) = (e.perp(), e.length());
+            let (mut any_in, mut any_out) = (false, false);
+            for q in across {
+                let h = m.dot(*q - a);
+                any_in |= h > -margin * len;
+                any_out |= h <= margin * len;
+            }
+            if !any_in {
+                return Cover::Miss; // all beside this edge: no line meets the hull
+            }
+            all_in &= !any_out;
+        }
+        match (ahead, all_in) {
+            (true, true) => Cover::Hidden,
+            (true, false) => Cover::Ahead,
+            _ => Cover::Unknown,
+        }
+    }
+}
+
+/// A part's hull as planes it lies behind ([`hull_planes`]) and its bounding sphere.
+pub(super) struct Planes<'a> {
+    pub(super) planes: &'a [(DVec3, f64)],
+    pub(super) sphere: (DVec3, f64),
+}
+
+impl Planes<'_> {
+    /// What the planes alone settle of the convex hull of `corners` along unit `d`, by
+    /// `margin` (m): `None` when every line from it along d leaves a plane the hull lies
+    /// behind (or the sphere about it) away from it, so none meets the hull; else whether
+    /// one such plane, crossed inwards, has every corner outside it, so every line that
+    /// meets the hull meets it wholly ahead.
+    pub(super) fn settle(&self, corners: &[DVec3], d: DVec3, margin: f64) -> Option<bool> {
+        let outside = |(m, c): (DVec3, f64)| corners.iter().all(|p| m.dot(*p) > c + margin);
+        let (centre, radius) = self.sphere;
+        let h = centre.dot(d);
+        if outside((d, h + radius))
+            || self
+                .planes
+                .iter()
+                .any(|&(m, c)| m.dot(d) > 0.0 && outside((m, c)))
+        {
+            return None;
+        }
+        Some(
+            outside((-d, radius - h))
+                || self
+                    .planes
+                    .iter()
+                    .any(|&(m, c)| m.dot(d) < 0.0 && outside((m, c))),
+        )
+    }
+}
+
+/// How a convex part stands to a face along a direction ([`Silhouette::cover`]). A line
+/// through a convex part's hull enters and leaves it, at most once through a cap's open
+/// side, so a line that meets the hull wholly ahead of its point meets the part there.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Cover {
+    /// No ray from the face along the direction meets the part's hull.
+    Miss,
+    /// Every such line meets the hull, and wholly ahead: the face is dark along it.
+    Hidden,
+    /// The hull lies wholly ahead of every point of the face, so the part's shadow on it is
+    /// its silhouette projected onto the face's plane, however the plane cuts the part.
+    Ahead,
+    /// None of these proved.
+    Unknown,
+}
+
+/// Most parts' planes kept for [`Silhouette::hides`]: a finely meshed cap keeps its lid's.
+const MAX_COVER_PLANES: usize = 64;
+
+/// Per part: planes (outward unit normal m, offset c) that its hull lies behind
+/// (m·x ≤ c, within the tolerance): its faces' when it has few, and its lid's. `None` for
+/// a flat part of several faces: a line crosses its plane once, where an open side (a
+/// hole) may be, so it does not hide its hull (one convex face does).
+pub(super) fn hull_planes(
+    parts: &[ConvexPart],
+    geoms: &[FaceGeom],
+) -> Vec<Option<Vec<(DVec3, f64)>>> {
+    parts
+        .iter()
+        .map(|p| {
+            let first = geoms[p.faces[0] as usize].normal;
+            let flat = p.faces.iter().all(|&f| {
+                let n = geoms[f as usize].normal;
+                n.cross(first).length_squared() < 1e-18
+            });
+            if flat && (p.faces.len() > 1 || geoms[p.faces[0] as usize].convex().is_empty()) {
+                return None;
+            }
+            let mut planes = Vec::new();
+            if flat {
+                // one convex face: its hull lies on its plane, behind it from either side
+                let c = first.dot(geoms[p.faces[0] as usize].centroid);
+                return Some(vec![(first, c), (-first, -c)]);
+            }
+            if p.faces.len() <= MAX_COVER_PLANES {
+                for (&f, &ahead) in p.faces.iter().zip(&p.hull_ahead) {
+                    let g = &geoms[f as usize];
+                    // the hull lies behind a box's faces, in front of a dish's concave ones
+                    let m = if ahead { -g.normal } else { g.normal };
+                    planes.push((m, m.dot(g.centroid)));
+                }
+            }
+            if let Some(lid) = &p.lid {
+                planes.push((lid.normal, lid.normal.dot(lid.origin)));
+            }
+            Some(planes)
+        })
+        .collect()
+}
+
+/// Most parts a face is tested against for being hidden whole ([`Silhouette::hides`]).
+const MAX_COVERS: usize = 8;
+
+/// Per face, per side (front, back): the parts (its own left out) whose bounding spheres
+/// reach in front of that side — those that could hide it whole — nearest first, at most
+/// [`MAX_COVERS`].
+pub(super) fn cover_candidates(
+    geoms: &[FaceGeom],
+    part_of: &[u32],
+    spheres: &[(DVec3, f64)],
+    tol: f64,
+) -> Vec<[Vec<u32>; 2]> {
+    geoms
+        .par_iter()
+        .zip(part_of)
+        .map(|(g, &own)| {
+            let mut sides: [Vec<(f64, u32)>; 2] = Default::default();
+            for (k, &(c, r)) in spheres.iter().enumerate() {
+                if own == k as u32 {
+                    continue;
+                }
+                let h = g.normal.dot(c - g.centroid);
+                let distance = (c - g.centroid).length() - r;
+                if h + r > tol {
+                    sides[0].push((distance, k as u32));
+                }
+                if g.two_sided && h - r < -tol {
+                    sides[1].push((distance, k as u32));
+                }
+            }
+            sides.map(|mut s| {
+                s.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                s.truncate(MAX_COVERS);
+                s.into_iter().map(|(_, k)| k).collect()
+            })
+        })
+        .collect()
 }
 
 /// Every patch's faces grouped by part: `faces` holds them patch after patch, each

@@ -44,7 +44,10 @@ impl Faces {
         let n = mesh.triangles.len();
         let (_, scale) = mesh.bounding_sphere();
         let plane_tol = 1e-9 * scale.max(1e-300);
-        let normals: Vec<DVec3> = (0..n).map(|i| mesh.area_vector(i).normalize()).collect();
+        let normals: Vec<DVec3> = (0..n)
+            .into_par_iter()
+            .map(|i| mesh.area_vector(i).normalize())
+            .collect();
         let mut parent: Vec<u32> = (0..n as u32).collect();
         if merge {
             // Weld vertices by exact position so meshes with split vertices still merge.
@@ -89,7 +92,7 @@ impl Faces {
             groups[index_of_root[r] as usize].push(t);
         }
         let faces = groups
-            .into_iter()
+            .into_par_iter()
             .map(|tris| Face::from_triangles(mesh, tris))
             .collect();
         Faces { faces }

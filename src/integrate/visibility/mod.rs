@@ -435,11 +435,21 @@ impl Visibility {
         // it, so a mesh of very many parts (a debris cloud) keeps tiles instead.
         let part_spheres = parts::spheres(&parts);
         let part_cones = parts::normal_cones(&parts, &geoms, faces, &corners);
-        if geoms.len().saturating_mul(parts.len()) <= PART_PAIRS_LIMIT {
-            let shadows = parts::part_shadows(&geoms, &parts, &part_of, &part_spheres, tol);
-            for (g, a) in geoms.iter_mut().zip(shadows) {
-                g.part_shadows = a;
-            }
+        // the caps' trees (one sequential build each) alongside the parallel part shadows
+        let (shadows, cap_trees) = rayon::join(
+            || {
+                (geoms.len().saturating_mul(parts.len()) <= PART_PAIRS_LIMIT)
+                    .then(|| parts::part_shadows(&geoms, &parts, &part_of, &part_spheres, tol))
+            },
+            || -> Vec<Option<CapTree>> {
+                parts
+                    .par_iter()
+                    .map(|p| p.lid.is_some().then(|| CapTree::new(p, &geoms)))
+                    .collect()
+            },
+        );
+        for (g, a) in geoms.iter_mut().zip(shadows.into_iter().flatten()) {
+            g.part_shadows = a;
         }
         let part_planes = parts::hull_planes(&parts, &geoms);
         if geoms.len().saturating_mul(parts.len()) <= PART_PAIRS_LIMIT {
@@ -468,10 +478,6 @@ impl Visibility {
                     sealed && g.lid_side[s] && !g.part_shadows.iter().any(|p| p.sides[s]);
             }
         }
-        let cap_trees: Vec<Option<CapTree>> = parts
-            .iter()
-            .map(|p| p.lid.is_some().then(|| CapTree::new(p, &geoms)))
-            .collect();
         let mut cap_slot = vec![0; geoms.len()];
         for tree in cap_trees.iter().flatten() {
             for (i, &f) in tree.order.iter().enumerate() {
@@ -1342,7 +1348,12 @@ fn pieces_of(
 
 /// Sorts points and drops exact repeats (the corners that neighbouring triangles share).
 fn sort_dedup(points: &mut Vec<DVec3>) {
-    points.sort_by(position_order);
+    // equal points are the same point: no order among them to keep
+    if points.len() > 4096 {
+        points.par_sort_unstable_by(position_order);
+    } else {
+        points.sort_unstable_by(position_order);
+    }
     points.dedup();
 }
 

@@ -531,15 +531,21 @@ impl Visibility {
         face: usize,
         n: DVec3,
         g: usize,
-        proj: &Projection,
+        along: Along,
         out: &mut Vec<Blocker>,
     ) {
-        if g == face || !proj.reaches(face, g) {
-            return;
-        }
-        let d = proj.dir.expect("projection built for this direction");
         let f = &self.faces[face];
         let o = &self.faces[g];
+        let (reached, d) = match along {
+            Along::Projected(proj) => (
+                proj.reaches(face, g),
+                proj.dir.expect("projection built for this direction"),
+            ),
+            Along::Direction(d) => (reaches(f.centroid, f.radius, o.centroid, o.radius, d), d),
+        };
+        if g == face || !reached {
+            return;
+        }
         // the occluder must reach in front of the face's lit/seen side
         if !reaches_front(o, n, f.centroid, self.tol) {
             return;
@@ -560,6 +566,11 @@ impl Visibility {
         };
         // half-space proof with the face's own vertices
         if blocker.half_space_clear(d, &f.vertices, self.tol) {
+            return;
+        }
+        // a plate much larger than the face (a solar panel over a dish's facet): no line
+        // from the face meets it when all their meets with its plane lie beyond one edge
+        if o.radius > LARGE_BLOCKER * f.radius && outline_clear(o, d, &f.vertices, self.tol) {
             return;
         }
         out.push(blocker);
@@ -918,13 +929,10 @@ impl Visibility {
             };
             if let Some(list) = lid_blockers {
                 // a cap's inner face: only what lies in front of its lid or in its hull
-                if !list.is_empty() {
-                    project(&mut cache.projections[k]);
-                    let proj = &cache.projections[k];
-                    for &g in list {
-                        if !left_out(self.part_of[g as usize]) {
-                            self.consider_blocker(face, n, g as usize, proj, &mut out[k]);
-                        }
+                for &g in list {
+                    if !left_out(self.part_of[g as usize]) {
+                        let along = Along::Direction(d);
+                        self.consider_blocker(face, n, g as usize, along, &mut out[k]);
                     }
                 }
                 continue;
@@ -955,10 +963,10 @@ impl Visibility {
             if count == 0 {
                 continue;
             }
-            project(&mut cache.projections[k]);
-            let proj = &cache.projections[k];
             let out = &mut out[k];
             if count > GRID_MIN_FACES {
+                project(&mut cache.projections[k]);
+                let proj = &cache.projections[k];
                 // many faces to test (a finely meshed curved part): ask the epoch's grid of
                 // faces seen along d for those whose shadow can fall on this one
                 // (a cap's own faces left out of the grid: there are many)
@@ -970,7 +978,7 @@ impl Visibility {
                 let centre = DVec2::new(at[0], at[1]);
                 grid.query(centre, at[3], &mut cache.stamp, |g| {
                     if !left_out(self.part_of[g as usize]) {
-                        self.consider_blocker(face, n, g as usize, proj, out)
+                        self.consider_blocker(face, n, g as usize, Along::Projected(proj), out)
                     }
                 });
             } else {
@@ -979,8 +987,10 @@ impl Visibility {
                     // out of reach
                     let pp = &self.patches[p as usize];
                     if reaches(f.centroid, f.radius, pp.centre, pp.radius, d) {
+                        // few faces: their spheres tested as they are, with no
+                        // projection of every face built for them
                         for g in self.patch_parts.faces(p, left_out) {
-                            self.consider_blocker(face, n, g as usize, proj, out);
+                            self.consider_blocker(face, n, g as usize, Along::Direction(d), out);
                         }
                     }
                 }
@@ -1258,6 +1268,43 @@ struct Blocker {
     feature: f64,
     /// Upper bound of its shadow's area on the face, m².
     shadow_area: f64,
+}
+
+/// How [`Visibility::consider_blocker`] tests a blocker's reach along the direction: from
+/// the epoch's projection of every face, or from the two spheres as they are.
+#[derive(Clone, Copy)]
+enum Along<'a> {
+    Projected(&'a Projection),
+    Direction(DVec3),
+}
+
+/// How many times a face's radius a blocker's must be for [`outline_clear`] to be tried:
+/// for a blocker of about the face's size, the reach and half-space tests already decide.
+const LARGE_BLOCKER: f64 = 4.0;
+
+/// Does no line from `points` along `d` meet the convex face `o`? True when every line
+/// meets `o`'s plane beyond one edge of its outline, by `tol` (m). False for a face of
+/// more than 8 corners, or `d` within 1e-6 of its plane, where it does not try.
+fn outline_clear(o: &FaceGeom, d: DVec3, points: &[DVec3], tol: f64) -> bool {
+    let corners = o.convex();
+    let dn = d.dot(o.normal);
+    if corners.len() < 3 || corners.len() > 8 || dn.abs() < 1e-6 || points.len() > 8 {
+        return false;
+    }
+    let mut meets = [DVec3::ZERO; 8];
+    for (m, p) in meets.iter_mut().zip(points) {
+        *m = *p + d * (o.normal.dot(o.centroid - *p) / dn);
+    }
+    let meets = &meets[..points.len()];
+    (0..corners.len()).any(|i| {
+        let (a, b) = (corners[i], corners[(i + 1) % corners.len()]);
+        let mut out = (b - a).cross(o.normal);
+        if out.dot(o.centroid - a) > 0.0 {
+            out = -out; // away from the outline's inside, whichever way it runs
+        }
+        let slack = tol * out.length();
+        meets.iter().all(|q| out.dot(*q - a) > slack)
+    })
 }
 
 impl Blocker {
@@ -1962,6 +2009,68 @@ mod tests {
         assert!(
             hidden > 100 && missed > 1000 && ahead > 100,
             "{hidden} hidden, {missed} missed, {ahead} ahead"
+        );
+    }
+
+    #[test]
+    fn a_plate_said_clear_of_a_face_meets_no_line_from_it() {
+        // `outline_clear` against f64 lines (rays both ways) from 32 points of a small
+        // triangle to a 2 m square plate, for random placements and directions; the
+        // claim must hold for every line, and be made often enough to matter.
+        let mut rnd = crate::test_rng(11);
+        let corners = [
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(-1.0, 1.0, 0.0),
+        ];
+        let plate = FaceGeom {
+            normal: DVec3::Z,
+            centroid: DVec3::ZERO,
+            radius: 2f64.sqrt(),
+            area: 4.0,
+            two_sided: true,
+            pieces: vec![
+                [corners[0], corners[1], corners[2]],
+                [corners[0], corners[2], corners[3]],
+            ],
+            pieces_area: 4.0,
+            outline: corners.to_vec(),
+            vertices: corners.to_vec(),
+            part_shadows: Vec::new(),
+            covers: Default::default(),
+            lid_side: [false; 2],
+            lid_only: [false; 2],
+            own_outside: [false; 2],
+            patch: 0,
+        };
+        let (mut clear, mut tried) = (0, 0);
+        for _ in 0..2000 {
+            let centre = DVec3::new(6.0 * rnd() - 3.0, 6.0 * rnd() - 3.0, 4.0 * rnd() - 2.0);
+            let tri: [DVec3; 3] = [0, 1, 2].map(|_| centre + 0.3 * random_unit(&mut rnd));
+            let d = random_unit(&mut rnd);
+            tried += 1;
+            if !outline_clear(&plate, d, &tri, 1e-9) {
+                continue;
+            }
+            clear += 1;
+            for _ in 0..32 {
+                let (mut a, mut b) = (rnd(), rnd());
+                if a + b > 1.0 {
+                    (a, b) = (1.0 - a, 1.0 - b);
+                }
+                let p = tri[0] + (tri[1] - tri[0]) * a + (tri[2] - tri[0]) * b;
+                for t in &plate.pieces {
+                    assert!(
+                        !ray_meets_triangle(p, d, t) && !ray_meets_triangle(p, -d, t),
+                        "said clear, but the line from {p} along {d} meets the plate"
+                    );
+                }
+            }
+        }
+        assert!(
+            clear > 500 && clear < tried,
+            "{clear} of {tried} said clear"
         );
     }
 

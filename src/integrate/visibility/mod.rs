@@ -2015,15 +2015,25 @@ mod tests {
     #[test]
     fn a_plate_said_clear_of_a_face_meets_no_line_from_it() {
         // `outline_clear` against f64 lines (rays both ways) from 32 points of a small
-        // triangle to a 2 m square plate, for random placements and directions; the
-        // claim must hold for every line, and be made often enough to matter.
+        // triangle to a 2 m square plate, its outline running either way, for random
+        // placements and directions; the claim must hold for every line, and be made
+        // often enough to matter.
+        for clockwise in [false, true] {
+            plate_clear_against_rays(clockwise);
+        }
+    }
+
+    fn plate_clear_against_rays(clockwise: bool) {
         let mut rnd = crate::test_rng(11);
-        let corners = [
+        let mut corners = [
             DVec3::new(-1.0, -1.0, 0.0),
             DVec3::new(1.0, -1.0, 0.0),
             DVec3::new(1.0, 1.0, 0.0),
             DVec3::new(-1.0, 1.0, 0.0),
         ];
+        if clockwise {
+            corners.reverse();
+        }
         let plate = FaceGeom {
             normal: DVec3::Z,
             centroid: DVec3::ZERO,

@@ -589,7 +589,6 @@ impl Visibility {
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
         let n = f.normal * side;
-        cache.exact.settled.iter_mut().for_each(Settled::clear);
         // Earthshine's representative direction may lie below the face while parts of
         // the Earth light it: no meaningful ray then; count it as unshadowed.
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
@@ -634,6 +633,7 @@ impl Visibility {
             }
             // clipped to the lid alone: no blockers to search for
             cache.exact.part_hits.iter_mut().for_each(Vec::clear);
+            cache.exact.settled.iter_mut().for_each(Settled::clear);
             let none: [Vec<Blocker>; 3] = Default::default();
             let open = open_directions(&directions, &lids);
             if let Some(areas) = self.exact_area(&mut cache.exact, face, n, &open, &none, &lids) {
@@ -650,6 +650,7 @@ impl Visibility {
         let min_size = LEAF_SIZE_FACTOR * budget / f.area.sqrt();
         // Along a direction that one part hides the whole face from, it is dark whatever
         // else lies there: no blockers to search or clip (a dish's back behind the bus).
+        cache.exact.settled.iter_mut().for_each(Settled::clear);
         let hidden = self.settle_by_parts(cache, face, side, &directions);
         if hidden[0] {
             return (0.0, 0.0, 0);

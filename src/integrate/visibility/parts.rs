@@ -455,7 +455,7 @@ pub(super) enum Cover {
     Unknown,
 }
 
-/// Most parts' planes kept for [`Silhouette::hides`]: a finely meshed cap keeps its lid's.
+/// Most parts' planes kept for [`Silhouette::cover`]: a finely meshed cap keeps its lid's.
 const MAX_COVER_PLANES: usize = 64;
 
 /// Per part: planes (outward unit normal m, offset c) that its hull lies behind
@@ -499,7 +499,7 @@ pub(super) fn hull_planes(
         .collect()
 }
 
-/// Most parts a face is tested against for being hidden whole ([`Silhouette::hides`]).
+/// Most parts a face is tested against for being hidden whole ([`Silhouette::cover`]).
 const MAX_COVERS: usize = 8;
 
 /// Per face, per side (front, back): the parts (its own left out) whose bounding spheres

@@ -184,6 +184,12 @@ impl<'a> Fixed<'a> {
     pub fn projected(&self, frame: &Frame) -> f64 {
         self.dirs.projected(self.brdf, frame)
     }
+
+    /// [`Fixed::projected`] given `cr` = n·v, which the caller already has.
+    #[inline]
+    pub fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
+        self.dirs.projected_given(self.brdf, frame, cr)
+    }
 }
 
 impl Directions {
@@ -203,9 +209,15 @@ impl Directions {
     // too would otherwise tip the compiler into an out-of-line call
     #[inline(always)]
     pub fn projected(&self, brdf: &Brdf, frame: &Frame) -> f64 {
+        self.projected_given(brdf, frame, frame.n.dot(self.v))
+    }
+
+    /// [`Directions::projected`] given `cr` = n·v (the per-face loops compute it once for
+    /// every light).
+    #[inline(always)]
+    pub fn projected_given(&self, brdf: &Brdf, frame: &Frame, cr: f64) -> f64 {
         let (l, v) = (self.l, self.v);
         let ci = frame.n.dot(l);
-        let cr = frame.n.dot(v);
         if ci <= 0.0 || cr <= 0.0 {
             return 0.0;
         }

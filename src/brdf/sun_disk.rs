@@ -130,21 +130,26 @@ impl<'a> SunLight<'a> {
     /// [`projected`] for a face with this frame, sr⁻¹ (the same value, computed faster).
     #[inline]
     pub fn projected(&self, frame: &Frame) -> f64 {
+        self.projected_given(frame, frame.n.dot(self.v))
+    }
+
+    /// [`SunLight::projected`] given `cr` = n·v, which the caller already has.
+    #[inline]
+    pub fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
         if let Some(disk) = &self.disk {
             let n = frame.n;
-            let cr = n.dot(self.v);
             // near the glint: the test of `projected_with`, by cosines
             if cr > 0.0 && (2.0 * cr * n - self.v).dot(self.l) >= disk.cos_reach {
                 let sum: f64 = disk
                     .spec_dirs
                     .iter()
-                    .map(|d| d.projected(&disk.spec, frame))
+                    .map(|d| d.projected_given(&disk.spec, frame, cr))
                     .sum();
-                return disk.diffuse_dirs.projected(&disk.diffuse, frame)
+                return disk.diffuse_dirs.projected_given(&disk.diffuse, frame, cr)
                     + sum / DISK_POINTS as f64;
             }
         }
-        self.point.projected(frame)
+        self.point.projected_given(frame, cr)
     }
 }
 

@@ -130,15 +130,17 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             n: face.normal * side,
             t: face.tangent,
         };
+        // n·v on the side seen, for every light: (side·n)·v is side·(n·v) exactly
+        let cr = cr.abs();
         let sun_term = if es > 0.0 {
             // the Sun as a disk: a narrow lobe's glint is the disk's reflection, not a spike
-            es * suns[m].projected(&frame)
+            es * suns[m].projected_given(&frame, cr)
         } else {
             0.0
         };
         let earth_term: f64 = beams_fixed[m]
             .iter()
-            .map(|(irradiance, fixed)| irradiance * fixed.projected(&frame))
+            .map(|(irradiance, fixed)| irradiance * fixed.projected_given(&frame, cr))
             .sum();
         if sun_term > 0.0 || earth_term > 0.0 {
             unshadowed += (sun_term + earth_term) * face.area;

@@ -288,23 +288,14 @@ struct ShadowBuffers {
 }
 
 impl Cache {
-    /// Forgets everything: call at the start of each epoch.
+    /// Forgets what belongs to one epoch: call at the start of each. What is keyed by a
+    /// direction alone (parts' silhouettes, caps' face states, projections and grids of
+    /// the faces) is kept for the next epoch along the same direction: one request's
+    /// mesh, so the same answer (a Sun fixed in the body frame, an Earth at nadir).
     pub fn reset(&mut self) {
         self.key = None;
         self.flagged = [None, None, None];
         self.kept = [None, None, None];
-        for g in self.grids.iter_mut().flatten() {
-            g.dir = None;
-        }
-        for p in &mut self.projections {
-            p.dir = None;
-        }
-        for s in self.exact.silhouettes.iter_mut().flatten() {
-            s.dir = None;
-        }
-        for s in self.cap_states.iter_mut().flatten() {
-            s.dir = None;
-        }
     }
 }
 

@@ -3,13 +3,25 @@
 //! (e.g. `7 5 24 10000` gives a 0.85 M-triangle box-wing; wrap in `/usr/bin/time -v` for
 //! memory). `FLAT_LEVELS` = `sphere:L` uses a convex icosphere of 20·4^L triangles instead.
 //! A fifth argument names a file to write the light curve to (irradiance per epoch, one
-//! per line, full precision), to compare two builds.
+//! per line, full precision), to compare two builds. `--sun-drift DEG` turns the Sun by
+//! DEG about the body's z axis from epoch to epoch, so that no Sun direction repeats.
 
 use glint::geometry::builtin;
 use glint::scene::{Limits, Scene};
 
 fn main() {
     let mut raw: Vec<String> = std::env::args().skip(1).collect();
+    // `--sun-drift DEG`: turn the Sun by DEG about the body's z axis from each epoch to the
+    // next, so that no two epochs share a Sun direction (as in a real pass, where it moves
+    // ~1° a day in an inertially held body frame) and no cache keyed by it is reused
+    let drift = raw.iter().position(|a| a == "--sun-drift").map(|i| {
+        let deg: f64 = raw
+            .get(i + 1)
+            .and_then(|d| d.parse().ok())
+            .expect("--sun-drift DEG");
+        raw.drain(i..i + 2);
+        deg.to_radians()
+    });
     let sphere = raw
         .first()
         .and_then(|a| a.strip_prefix("sphere:"))
@@ -37,6 +49,11 @@ fn main() {
     };
     let base = scene.epochs.clone();
     scene.epochs = (0..epochs as usize).map(|i| base[i % base.len()]).collect();
+    if let Some(step) = drift {
+        for (i, e) in scene.epochs.iter_mut().enumerate() {
+            e.sun = glam::DQuat::from_rotation_z(step * i as f64) * e.sun;
+        }
+    }
     let r = glint::simulate(&scene);
     if let Some(path) = out {
         let lines: Vec<String> = r

@@ -69,6 +69,13 @@ impl HullIndices {
     /// dropped first (Akl–Toussaint), so only a band along the boundary is sorted: a
     /// finely meshed dish projects to thousands of points, mostly inside.
     pub fn compute(&mut self, points: &[DVec2], slack: f64) {
+        self.compute_corners(points, slack);
+        self.compute_near(points, slack);
+    }
+
+    /// The corners alone ([`HullIndices::compute`] without `near`, which is left empty
+    /// until [`HullIndices::compute_near`] is called with the same points).
+    pub fn compute_corners(&mut self, points: &[DVec2], slack: f64) {
         self.order.clear();
         if points.len() > 32 {
             let keys = |p: DVec2| [p.x, p.y, p.x + p.y, p.x - p.y];
@@ -108,46 +115,55 @@ impl HullIndices {
             let (p, q) = (points[a as usize], points[b as usize]);
             p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
         });
-        // monotone chains: strict for the corners, tolerant for the near points
         self.corners.clear();
         self.near.clear();
-        for tolerant in [false, true] {
-            self.chain.clear();
-            for pass in 0..2 {
-                let start = self.chain.len();
-                for j in 0..self.order.len() {
-                    let i = if pass == 0 {
-                        self.order[j]
-                    } else {
-                        self.order[self.order.len() - 1 - j]
-                    };
-                    let b = points[i as usize];
-                    while self.chain.len() >= start + 2 {
-                        let o = points[self.chain[self.chain.len() - 2] as usize];
-                        let a = points[self.chain[self.chain.len() - 1] as usize];
-                        let turn = (a - o).perp_dot(b - o);
-                        let keep = if tolerant {
-                            turn >= -slack * (b - o).length()
-                        } else {
-                            turn > 0.0
-                        };
-                        if keep {
-                            break;
-                        }
-                        self.chain.pop();
-                    }
-                    self.chain.push(i);
-                }
-                self.chain.pop();
-            }
-            if tolerant {
-                self.near.extend_from_slice(&self.chain);
-            } else {
-                self.corners.extend_from_slice(&self.chain);
-            }
-        }
+        self.chain_pass(points, slack, false);
+    }
+
+    /// `near` for the points last given to [`HullIndices::compute_corners`].
+    pub fn compute_near(&mut self, points: &[DVec2], slack: f64) {
+        self.near.clear();
+        self.chain_pass(points, slack, true);
         self.near.sort_unstable();
         self.near.dedup();
+    }
+
+    /// Monotone chains over the sorted points: strict for the corners, tolerant (by
+    /// `slack`) for the near points.
+    fn chain_pass(&mut self, points: &[DVec2], slack: f64, tolerant: bool) {
+        self.chain.clear();
+        for pass in 0..2 {
+            let start = self.chain.len();
+            for j in 0..self.order.len() {
+                let i = if pass == 0 {
+                    self.order[j]
+                } else {
+                    self.order[self.order.len() - 1 - j]
+                };
+                let b = points[i as usize];
+                while self.chain.len() >= start + 2 {
+                    let o = points[self.chain[self.chain.len() - 2] as usize];
+                    let a = points[self.chain[self.chain.len() - 1] as usize];
+                    let turn = (a - o).perp_dot(b - o);
+                    let keep = if tolerant {
+                        turn >= -slack * (b - o).length()
+                    } else {
+                        turn > 0.0
+                    };
+                    if keep {
+                        break;
+                    }
+                    self.chain.pop();
+                }
+                self.chain.push(i);
+            }
+            self.chain.pop();
+        }
+        if tolerant {
+            self.near.extend_from_slice(&self.chain);
+        } else {
+            self.corners.extend_from_slice(&self.chain);
+        }
     }
 }
 

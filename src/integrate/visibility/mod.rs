@@ -1109,7 +1109,7 @@ impl Visibility {
                 x.shadow.clear();
                 if ps.cut {
                     x.part_points.clear();
-                    for &j in &hull.near {
+                    for &j in hull.near(tol) {
                         let (p, h) = project(part.vertices[j as usize]);
                         if h >= -tol {
                             x.part_points.push(p);

@@ -325,10 +325,12 @@ pub(super) fn vertex_index(part: &ConvexPart, p: &DVec3) -> Option<usize> {
 #[derive(Default)]
 pub(super) struct Silhouette {
     pub(super) dir: Option<DVec3>,
-    /// Corners of the part's projection across `dir` and its vertices on or near its
-    /// boundary, as indices into the part's vertices.
+    /// Corners of the part's projection across `dir` and (see [`Silhouette::near`]) its
+    /// vertices on or near its boundary, as indices into the part's vertices.
     pub(super) corners: Vec<u32>,
-    pub(super) near: Vec<u32>,
+    near: Vec<u32>,
+    /// The slack `near` was found with; `None` until asked for, this direction.
+    near_slack: Option<f64>,
     hull: HullIndices,
     /// Vertices that may lie on the silhouette, and their projections.
     keep: Vec<u32>,
@@ -353,17 +355,30 @@ impl Silhouette {
                 self.points.push(DVec2::new(v.dot(u), v.dot(w)));
             }
         }
-        self.hull.compute(&self.points, tol);
+        // the near points only when a cut part asks for them ([`Silhouette::near`])
+        self.hull.compute_corners(&self.points, tol);
         self.corners.clear();
         self.corners
             .extend(self.hull.corners.iter().map(|&j| self.keep[j as usize]));
         self.near.clear();
-        self.near
-            .extend(self.hull.near.iter().map(|&j| self.keep[j as usize]));
+        self.near_slack = None;
         self.outline.clear();
         self.outline
             .extend(self.hull.corners.iter().map(|&j| self.points[j as usize]));
         self.dir = Some(d);
+    }
+
+    /// The part's vertices on or within `tol` (m) of its projection's boundary (indices
+    /// into its vertices), found on first asking for this direction.
+    pub(super) fn near(&mut self, tol: f64) -> &[u32] {
+        if self.near_slack != Some(tol) {
+            self.hull.compute_near(&self.points, tol);
+            self.near.clear();
+            self.near
+                .extend(self.hull.near.iter().map(|&j| self.keep[j as usize]));
+            self.near_slack = Some(tol);
+        }
+        &self.near
     }
 
     /// The (u, w) axes across `dir` that [`Silhouette::cover`]'s projected corners use.

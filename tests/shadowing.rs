@@ -464,10 +464,7 @@ fn a_cup_is_lit_and_seen_only_through_its_rim() {
 /// two in three runs of this test failed).
 #[test]
 fn the_same_request_gives_the_same_light_curve_to_the_last_bit() {
-    let text = include_str!("../scenes/box-wing.json");
-    let mut sc = glint::scene::Scene::from_json(text, &glint::scene::Limits::unlimited())
-        .expect("the box-wing request");
-    sc.mesh = glint::geometry::builtin::box_wing_with(4, 16, 0);
+    let sc = small_dish_box_wing();
     let curve = || -> Vec<u64> {
         glint::simulate(&sc)
             .epochs
@@ -488,10 +485,7 @@ fn the_same_request_gives_the_same_light_curve_to_the_last_bit() {
 /// run alone, against the whole run.
 #[test]
 fn an_epoch_gives_the_same_light_alone_as_after_others() {
-    let text = include_str!("../scenes/box-wing.json");
-    let mut sc = glint::scene::Scene::from_json(text, &glint::scene::Limits::unlimited())
-        .expect("the box-wing request");
-    sc.mesh = glint::geometry::builtin::box_wing_with(4, 16, 0);
+    let mut sc = small_dish_box_wing();
     let all = glint::simulate(&sc);
     let epochs = sc.epochs.clone();
     for (i, epoch) in epochs.iter().enumerate().step_by(17) {
@@ -505,4 +499,13 @@ fn an_epoch_gives_the_same_light_alone_as_after_others() {
             all.epochs[i].irradiance_w_m2
         );
     }
+}
+
+/// The box-wing request (341 epochs) on the box-wing with a 4 × 16 dish.
+fn small_dish_box_wing() -> glint::scene::Scene {
+    let text = include_str!("../scenes/box-wing.json");
+    let mut sc = glint::scene::Scene::from_json(text, &glint::scene::Limits::unlimited())
+        .expect("the box-wing request");
+    sc.mesh = glint::geometry::builtin::box_wing_with(4, 16, 0);
+    sc
 }

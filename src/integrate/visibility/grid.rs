@@ -221,23 +221,7 @@ mod tests {
     use super::*;
 
     fn face_at(centroid: DVec3, radius: f64) -> FaceGeom {
-        FaceGeom {
-            normal: DVec3::Z,
-            centroid,
-            radius,
-            area: 1.0,
-            two_sided: false,
-            pieces: Vec::new(),
-            pieces_area: 0.0,
-            outline: Vec::new(),
-            vertices: Vec::new(),
-            part_shadows: Vec::new(),
-            covers: Default::default(),
-            lid_side: [false; 2],
-            lid_only: [false; 2],
-            own_outside: [false; 2],
-            patch: 0,
-        }
+        FaceGeom::bare(DVec3::Z, centroid, radius)
     }
 
     #[test]

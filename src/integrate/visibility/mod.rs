@@ -138,6 +138,31 @@ impl FaceGeom {
     }
 }
 
+#[cfg(test)]
+impl FaceGeom {
+    /// A face of unit area with this plane and bounding sphere and nothing else (no
+    /// pieces, vertices or parts), for tests to fill in.
+    fn bare(normal: DVec3, centroid: DVec3, radius: f64) -> FaceGeom {
+        FaceGeom {
+            normal,
+            centroid,
+            radius,
+            area: 1.0,
+            two_sided: false,
+            pieces: Vec::new(),
+            pieces_area: 0.0,
+            outline: Vec::new(),
+            vertices: Vec::new(),
+            part_shadows: Vec::new(),
+            covers: Default::default(),
+            lid_side: [false; 2],
+            lid_only: [false; 2],
+            own_outside: [false; 2],
+            patch: 0,
+        }
+    }
+}
+
 /// The distinct vertices of a patch's faces.
 fn patch_points(geoms: &[FaceGeom], patch: &Patch) -> Points {
     let mut v: Vec<DVec3> = patch
@@ -444,16 +469,8 @@ impl Visibility {
         }
         let part_planes = parts::hull_planes(&parts, &geoms);
         if geoms.len().saturating_mul(parts.len()) <= PART_PAIRS_LIMIT {
-            let usable: Vec<(DVec3, f64)> = part_spheres
-                .iter()
-                .zip(&part_planes)
-                .map(|(&s, planes)| match planes {
-                    Some(_) => s,
-                    // never reaches in front: left out of the candidates
-                    None => (DVec3::ZERO, f64::NEG_INFINITY),
-                })
-                .collect();
-            let covers = parts::cover_candidates(&geoms, &part_of, &usable, tol);
+            let covers =
+                parts::cover_candidates(&geoms, &part_of, &part_spheres, &part_planes, tol);
             for (g, c) in geoms.iter_mut().zip(covers) {
                 g.covers = c;
             }
@@ -665,6 +682,23 @@ impl Visibility {
         (lit(1, a_sun), lit(2, a_earth), rays)
     }
 
+    /// Part `part`'s silhouette along unit `d`, from the direction's cache (computed unless
+    /// already held).
+    fn silhouette<'a>(
+        &self,
+        silhouettes: &'a mut Vec<Silhouette>,
+        part: u32,
+        d: DVec3,
+    ) -> &'a mut Silhouette {
+        if silhouettes.len() < self.parts.len() {
+            silhouettes.resize_with(self.parts.len(), Default::default);
+        }
+        let p = part as usize;
+        let hull = &mut silhouettes[p];
+        hull.along(&self.parts[p], &self.part_cones[p], d, self.tol);
+        hull
+    }
+
     /// Per direction: is `face` (on side `side`) hidden whole along it by one convex part?
     /// What else its cover candidates settle goes to `cache.exact.settled`
     /// ([`parts::Silhouette::cover`]).
@@ -689,10 +723,8 @@ impl Visibility {
             let Some(d) = *d else { continue };
             // the direction the shadows are cast along (`exact_area`'s)
             let d = above_horizon(d, n);
-            let (u, w) = Silhouette::axes(d);
+            // the face's corners across d, projected once a part needs its silhouette
             x.across.clear();
-            x.across
-                .extend(f.vertices.iter().map(|p| DVec2::new(p.dot(u), p.dot(w))));
             let (silhouettes, settled) = (&mut x.silhouettes[k], &mut x.settled[k]);
             for &part in covers {
                 let bit = if part < 64 { 1u64 << part } else { 0 };
@@ -710,11 +742,12 @@ impl Visibility {
                     settled.miss |= bit;
                     continue;
                 };
-                if silhouettes.len() < self.parts.len() {
-                    silhouettes.resize_with(self.parts.len(), Default::default);
+                if x.across.is_empty() {
+                    let (u, w) = Silhouette::axes(d);
+                    x.across
+                        .extend(f.vertices.iter().map(|p| DVec2::new(p.dot(u), p.dot(w))));
                 }
-                let hull = &mut silhouettes[p];
-                hull.along(&self.parts[p], &self.part_cones[p], d, self.tol);
+                let hull = self.silhouette(silhouettes, part, d);
                 match hull.cover(ahead, &x.across, margin) {
                     Cover::Hidden => {
                         hidden[k] = true;
@@ -1101,11 +1134,7 @@ impl Visibility {
             for &i in part_hits {
                 let ps = &f.part_shadows[i as usize];
                 let part = &self.parts[ps.part as usize];
-                if silhouettes.len() < self.parts.len() {
-                    silhouettes.resize_with(self.parts.len(), Default::default);
-                }
-                let hull = &mut silhouettes[ps.part as usize];
-                hull.along(part, &self.part_cones[ps.part as usize], d, tol);
+                let hull = self.silhouette(silhouettes, ps.part, d);
                 x.shadow.clear();
                 if ps.cut {
                     x.part_points.clear();
@@ -1134,11 +1163,7 @@ impl Visibility {
             // Parts wholly ahead of the face: their silhouettes, projected onto its plane.
             for &p in ahead {
                 let part = &self.parts[p as usize];
-                if silhouettes.len() < self.parts.len() {
-                    silhouettes.resize_with(self.parts.len(), Default::default);
-                }
-                let hull = &mut silhouettes[p as usize];
-                hull.along(part, &self.part_cones[p as usize], d, tol);
+                let hull = self.silhouette(silhouettes, p, d);
                 x.shadow.clear();
                 x.shadow.extend(
                     hull.corners
@@ -2027,9 +2052,6 @@ mod tests {
             corners.reverse();
         }
         let plate = FaceGeom {
-            normal: DVec3::Z,
-            centroid: DVec3::ZERO,
-            radius: 2f64.sqrt(),
             area: 4.0,
             two_sided: true,
             pieces: vec![
@@ -2039,12 +2061,7 @@ mod tests {
             pieces_area: 4.0,
             outline: corners.to_vec(),
             vertices: corners.to_vec(),
-            part_shadows: Vec::new(),
-            covers: Default::default(),
-            lid_side: [false; 2],
-            lid_only: [false; 2],
-            own_outside: [false; 2],
-            patch: 0,
+            ..FaceGeom::bare(DVec3::Z, DVec3::ZERO, 2f64.sqrt())
         };
         let (mut clear, mut tried) = (0, 0);
         for _ in 0..2000 {

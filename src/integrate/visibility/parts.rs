@@ -517,13 +517,14 @@ pub(super) fn hull_planes(
 /// Most parts a face is tested against for being hidden whole ([`Silhouette::cover`]).
 const MAX_COVERS: usize = 8;
 
-/// Per face, per side (front, back): the parts (its own left out) whose bounding spheres
-/// reach in front of that side — those that could hide it whole — nearest first, at most
-/// [`MAX_COVERS`].
+/// Per face, per side (front, back): the parts (its own left out, and those `planes`
+/// ([`hull_planes`]) has none for) whose bounding spheres reach in front of that side —
+/// those that could hide it whole — nearest first, at most [`MAX_COVERS`].
 pub(super) fn cover_candidates(
     geoms: &[FaceGeom],
     part_of: &[u32],
     spheres: &[(DVec3, f64)],
+    planes: &[Option<Vec<(DVec3, f64)>>],
     tol: f64,
 ) -> Vec<[Vec<u32>; 2]> {
     geoms
@@ -532,7 +533,7 @@ pub(super) fn cover_candidates(
         .map(|(g, &own)| {
             let mut sides: [Vec<(f64, u32)>; 2] = Default::default();
             for (k, &(c, r)) in spheres.iter().enumerate() {
-                if own == k as u32 {
+                if own == k as u32 || planes[k].is_none() {
                     continue;
                 }
                 let h = g.normal.dot(c - g.centroid);

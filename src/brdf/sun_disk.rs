@@ -140,16 +140,23 @@ impl<'a> SunLight<'a> {
             let n = frame.n;
             // near the glint: the test of `projected_with`, by cosines
             if cr > 0.0 && (2.0 * cr * n - self.v).dot(self.l) >= disk.cos_reach {
-                let sum: f64 = disk
-                    .spec_dirs
-                    .iter()
-                    .map(|d| d.projected_given(&disk.spec, frame, cr))
-                    .sum();
-                return disk.diffuse_dirs.projected_given(&disk.diffuse, frame, cr)
-                    + sum / DISK_POINTS as f64;
+                return disk.projected_given(frame, cr);
             }
         }
         self.point.projected_given(frame, cr)
+    }
+}
+
+impl Disk {
+    /// The disk's average near the glint, sr⁻¹.
+    #[inline]
+    fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
+        let sum: f64 = self
+            .spec_dirs
+            .iter()
+            .map(|d| d.projected_given(&self.spec, frame, cr))
+            .sum();
+        self.diffuse_dirs.projected_given(&self.diffuse, frame, cr) + sum / DISK_POINTS as f64
     }
 }
 

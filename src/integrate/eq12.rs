@@ -115,6 +115,18 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     scratch.lit.clear();
     scratch.visibility.reset();
     let mut unshadowed = 0.0;
+    // faces whose visible areas need no search (a dish's inner faces that their own lid
+    // decides along every direction): summed here, where their terms are at hand
+    let lids = match &p.visibility {
+        Some(vis) if p.image.is_none() => vis.lid_table(
+            &mut scratch.visibility,
+            v,
+            (es > 0.0).then_some(l),
+            earthshine.shadow_dir,
+        ),
+        _ => None,
+    };
+    let mut decided = Sums::default();
     for (i, face) in p.faces.faces.iter().enumerate() {
         let m = face.material as usize;
         let material = &scene.materials[m];
@@ -144,6 +156,12 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             .sum();
         if sun_term > 0.0 || earth_term > 0.0 {
             unshadowed += (sun_term + earth_term) * face.area;
+            if let Some(lids) = &lids {
+                if let Some(areas) = lids.decided(i, side, sun_term > 0.0, earth_term > 0.0) {
+                    decided.add(sun_term, earth_term, areas);
+                    continue;
+                }
+            }
             scratch.lit.push(LitFace {
                 face: i as u32,
                 side,
@@ -155,9 +173,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     }
 
     // Pass 2: visible fractions (all 1 without rays).
-    let mut sun_sum = 0.0;
-    let mut earth_sum = 0.0;
-    let mut lit_visible_area = 0.0;
+    let mut sums = decided;
     let mut rays = 0u64;
     if let Some(img) = &p.image {
         let lit = scratch
@@ -181,9 +197,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     let mut reference = unshadowed;
     for sweep in 0..2 {
         let rays_before = rays;
-        sun_sum = 0.0;
-        earth_sum = 0.0;
-        lit_visible_area = 0.0;
+        sums = decided;
         for lf in &scratch.lit {
             // lit-and-seen areas, m²
             let (a_sun, a_earth) = match &p.visibility {
@@ -193,15 +207,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                 }
                 None => (lf.area, lf.area),
                 Some(vis) => {
-                    let dirs = Uncertain {
-                        view: v,
-                        sun: (lf.sun > 0.0).then_some(l),
-                        earth: if lf.earth > 0.0 {
-                            earthshine.shadow_dir
-                        } else {
-                            None
-                        },
-                    };
+                    let dirs = uncertain(v, l, earthshine.shadow_dir, lf.sun, lf.earth);
                     // Area of this face whose misclassification costs the tolerance's
                     // share of the signal.
                     let weight = lf.sun + lf.earth;
@@ -217,13 +223,9 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                     (a_sun, a_earth)
                 }
             };
-            sun_sum += lf.sun * a_sun;
-            earth_sum += lf.earth * a_earth;
-            if lf.sun > 0.0 {
-                lit_visible_area += a_sun;
-            }
+            sums.add(lf.sun, lf.earth, (a_sun, a_earth));
         }
-        let found = sun_sum + earth_sum;
+        let found = sums.sun + sums.earth;
         // exact (clipped) areas do not depend on the budget: only sampled faces re-run
         let rays_used = p.image.is_none() && rays > rays_before;
         if sweep > 0 || !rays_used || found >= 0.5 * reference || found <= 0.0 {
@@ -233,6 +235,11 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     }
 
     let r2 = range * range;
+    let Sums {
+        sun: sun_sum,
+        earth: earth_sum,
+        lit_visible_area,
+    } = sums;
     let intensity = sun_sum + earth_sum;
     let irradiance = intensity / r2;
     let mag = magnitude::apparent(irradiance, p.sun_band_1au);
@@ -252,6 +259,39 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         },
         rays,
     )
+}
+
+/// The directions whose shadows matter for a face seen along `v` with these Sun and
+/// earthshine terms: the Sun's `l` when sunlit, earthshine's `shadow_dir` when earthlit.
+#[inline]
+fn uncertain(v: DVec3, l: DVec3, shadow_dir: Option<DVec3>, sun: f64, earth: f64) -> Uncertain {
+    Uncertain {
+        view: v,
+        sun: (sun > 0.0).then_some(l),
+        earth: if earth > 0.0 { shadow_dir } else { None },
+    }
+}
+
+/// Running sums of one epoch: W/sr from the Sun and from earthshine, and the seen and
+/// sunlit area, m².
+#[derive(Debug, Clone, Copy, Default)]
+struct Sums {
+    sun: f64,
+    earth: f64,
+    lit_visible_area: f64,
+}
+
+impl Sums {
+    /// Adds a face's terms (W/(m²·sr)) times its seen-and-sunlit and seen-and-earthlit
+    /// areas (m²).
+    #[inline]
+    fn add(&mut self, sun: f64, earth: f64, (a_sun, a_earth): (f64, f64)) {
+        self.sun += sun * a_sun;
+        self.earth += earth * a_earth;
+        if sun > 0.0 {
+            self.lit_visible_area += a_sun;
+        }
+    }
 }
 
 /// Angle between unit vectors, rad; atan2 keeps it accurate near 0 and π.

@@ -597,29 +597,11 @@ impl Visibility {
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
         let n = f.normal * side;
-        // Earthshine's representative direction may lie below the face while parts of
-        // the Earth light it: no meaningful ray then; count it as unshadowed.
-        let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-        let directions = [Some(dirs.view), dirs.sun, earth];
-        if self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[usize::from(side < 0.0)]
-        {
-            // a cap's inner face that nothing but its own cap can shadow: the lid decides
-            let cap = self.part_of[face];
-            let lid = self.parts[cap as usize]
-                .lid
-                .as_ref()
-                .expect("caps have lids");
-            let mut lids = [LidState::Open; 3];
-            for (k, d) in directions.iter().enumerate() {
-                if let Some(d) = *d {
-                    lids[k] = self.lid_state(&mut cache.cap_states[k], lid, cap, face, d);
-                    if k == 0 && lids[0] == LidState::Closed {
-                        return (0.0, 0.0, 0);
-                    }
-                }
-            }
-            if !lids.contains(&LidState::Clip) {
-                let (a_sun, a_earth) = dark(&lids, (f.pieces_area, f.pieces_area));
+        let directions = face_directions(dirs, n);
+        if self.lid_decides(f, side) {
+            let lids = self.own_lid_states(cache, face, &directions);
+            if let Some(areas) = lid_decided(&lids, f.pieces_area) {
+                let (a_sun, a_earth) = areas;
                 return (a_sun, a_earth, 0);
             }
             // Clipped along one direction only: the lid's cut, measured on the lid's plane.
@@ -680,6 +662,73 @@ impl Visibility {
         cache.blockers = std::mem::take(&mut s.blockers);
         let lit = |k: usize, a: f64| if hidden[k] { 0.0 } else { a };
         (lit(1, a_sun), lit(2, a_earth), rays)
+    }
+
+    /// Every cap's face states along this epoch's view, Sun (when sunlit) and earthshine
+    /// shadow direction (when earthlit), brought up to date in `cache`, for
+    /// [`LidTable::decided`]; `None` when no lid decides any face.
+    pub fn lid_table<'a>(
+        &'a self,
+        cache: &'a mut Cache,
+        view: DVec3,
+        sun: Option<DVec3>,
+        earth: Option<DVec3>,
+    ) -> Option<LidTable<'a>> {
+        if !(self.mode == VisibilityMode::Adaptive && self.clip)
+            || self.cap_trees.iter().all(Option::is_none)
+        {
+            return None;
+        }
+        let dirs = [Some(view), sun, earth];
+        for (k, d) in dirs.iter().enumerate() {
+            let Some(d) = *d else { continue };
+            let states = &mut cache.cap_states[k];
+            states.resize_with(self.parts.len(), Default::default);
+            for (cap, tree) in self.cap_trees.iter().enumerate() {
+                if let (Some(tree), Some(lid)) = (tree, &self.parts[cap].lid) {
+                    states[cap].along(tree, lid, d, self.tol);
+                }
+            }
+        }
+        let [v, s, e] = &cache.cap_states;
+        Some(LidTable {
+            vis: self,
+            dirs,
+            states: [v, s, e],
+        })
+    }
+
+    /// Is `f` (on side `side`) a cap's inner face that nothing but its own cap can shadow?
+    #[inline]
+    fn lid_decides(&self, f: &FaceGeom, side: f64) -> bool {
+        self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[usize::from(side < 0.0)]
+    }
+
+    /// For a face that its own cap's lid alone decides ([`Visibility::lid_decides`]): the
+    /// lid's state along each direction. Along a direction not asked for, `Open`; once the
+    /// view is closed, the rest is not looked up.
+    #[inline]
+    fn own_lid_states(
+        &self,
+        cache: &mut Cache,
+        face: usize,
+        directions: &[Option<DVec3>; 3],
+    ) -> [LidState; 3] {
+        let cap = self.part_of[face];
+        let lid = self.parts[cap as usize]
+            .lid
+            .as_ref()
+            .expect("caps have lids");
+        let mut lids = [LidState::Open; 3];
+        for (k, d) in directions.iter().enumerate() {
+            if let Some(d) = *d {
+                lids[k] = self.lid_state(&mut cache.cap_states[k], lid, cap, face, d);
+                if k == 0 && lids[0] == LidState::Closed {
+                    break;
+                }
+            }
+        }
+        lids
     }
 
     /// Part `part`'s silhouette along unit `d`, from the direction's cache (computed unless
@@ -1023,6 +1072,77 @@ impl Visibility {
         }
         lids
     }
+}
+
+/// One epoch's lid states of every cap's faces ([`Visibility::lid_table`]).
+pub struct LidTable<'a> {
+    vis: &'a Visibility,
+    /// View, Sun, earthshine shadow direction, as the states were made for.
+    dirs: [Option<DVec3>; 3],
+    /// Per direction, per part: its face states (a cap's), in tree order.
+    states: [&'a [CapStates]; 3],
+}
+
+impl LidTable<'_> {
+    /// Seen-and-sunlit and seen-and-earthlit areas (m²) of `face` (on side `side`, lit by
+    /// the Sun and by earthshine as told) when its own cap's lid decides it whole along
+    /// every direction — a dish's inner face away from the rim's shadow: no search, no
+    /// clipping, exactly what [`Visibility::visible_area`] returns for it. `None` when
+    /// the face needs that call.
+    #[inline]
+    pub fn decided(
+        &self,
+        face: usize,
+        side: f64,
+        sunlit: bool,
+        earthlit: bool,
+    ) -> Option<(f64, f64)> {
+        let vis = self.vis;
+        let f = &vis.faces[face];
+        if !vis.lid_decides(f, side) {
+            return None;
+        }
+        let (cap, slot) = (vis.part_of[face] as usize, vis.cap_slot[face] as usize);
+        let state = |k: usize| self.states[k][cap].states[slot];
+        let view = state(0);
+        if view == LidState::Closed {
+            return Some((0.0, 0.0));
+        }
+        let open = |lit: bool, k: usize| !lit || self.dirs[k].is_none();
+        let sun = if open(sunlit, 1) {
+            LidState::Open
+        } else {
+            state(1)
+        };
+        // as `face_directions` filters the earthshine direction
+        let earth = match self.dirs[2] {
+            Some(e) if earthlit && (f.normal * side).dot(e) > 1e-3 => state(2),
+            _ => LidState::Open,
+        };
+        lid_decided(&[view, sun, earth], f.pieces_area)
+    }
+}
+
+/// View, Sun and earthshine directions that matter for a face of side normal `n`.
+/// Earthshine's representative direction may lie below the face while parts of the Earth
+/// light it: no meaningful ray then; it counts as unshadowed.
+#[inline]
+fn face_directions(dirs: &Uncertain, n: DVec3) -> [Option<DVec3>; 3] {
+    let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
+    [Some(dirs.view), dirs.sun, earth]
+}
+
+/// The areas (m²) of a face of area `area` whose own lid has `lids` along view, Sun and
+/// Earth, when no state is `Clip`: all of it or nothing along each.
+#[inline]
+fn lid_decided(lids: &[LidState; 3], area: f64) -> Option<(f64, f64)> {
+    if lids[0] == LidState::Closed {
+        return Some((0.0, 0.0));
+    }
+    if lids.contains(&LidState::Clip) {
+        return None;
+    }
+    Some(dark(lids, (area, area)))
 }
 
 /// The directions along which a face's own cap does not close it: along the others it is
@@ -1844,6 +1964,69 @@ mod tests {
         assert!(
             overruled * 100 < compared,
             "{overruled} of {compared} overruled"
+        );
+    }
+
+    #[test]
+    fn the_epochs_lid_table_decides_a_face_as_visible_area_does() {
+        // `LidTable::decided` is a shortcut the per-face loop takes before calling
+        // `visible_area`: wherever it answers, the answer must be `visible_area`'s to the
+        // last bit (the light curve must not depend on which path a face took), and it
+        // must answer for most of a dish's inner faces. Directions from all round, the
+        // earthshine direction often near the faces' horizons (its filter at n·e = 1e-3).
+        let vis = visibility_of(builtin::box_wing_with(8, 24, 0));
+        let mut rnd = crate::test_rng(23);
+        let mut unit = || random_unit(&mut rnd);
+        let (mut table_cache, mut cache) = (Cache::default(), Cache::default());
+        let (mut decided, mut lid_faces, mut closed_earth) = (0, 0, 0);
+        for trial in 0..80 {
+            let view = (unit() + DVec3::Z).normalize_or(DVec3::Z);
+            let sun = (trial % 4 != 0).then(&mut unit);
+            let earth = (trial % 3 != 0).then(|| {
+                if trial % 2 == 0 {
+                    unit()
+                } else {
+                    // near the dish's rim plane, where faces' horizons are
+                    (unit() * DVec3::new(1.0, 1.0, 0.05)).normalize_or(DVec3::X)
+                }
+            });
+            table_cache.reset();
+            let table = vis
+                .lid_table(&mut table_cache, view, sun, earth)
+                .expect("the dish is a cap");
+            cache.reset();
+            for (i, g) in vis.faces.iter().enumerate() {
+                for side in [1.0, -1.0] {
+                    let n = g.normal * side;
+                    if n.dot(view) <= 0.0 {
+                        continue;
+                    }
+                    let sunlit = sun.is_some_and(|d| n.dot(d) > 0.0);
+                    let earthlit = earth.is_some() && trial % 5 != 0;
+                    lid_faces += usize::from(vis.lid_decides(g, side));
+                    let Some((a_sun, a_earth)) = table.decided(i, side, sunlit, earthlit) else {
+                        continue;
+                    };
+                    let dirs = Uncertain {
+                        view,
+                        sun: sun.filter(|_| sunlit),
+                        earth: earth.filter(|_| earthlit),
+                    };
+                    let (b_sun, b_earth, rays) = vis.visible_area(&mut cache, i, side, &dirs, 1e-6);
+                    assert_eq!(rays, 0);
+                    assert_eq!(
+                        (a_sun.to_bits(), a_earth.to_bits()),
+                        (b_sun.to_bits(), b_earth.to_bits()),
+                        "face {i} side {side}: {a_sun} {a_earth} against {b_sun} {b_earth}"
+                    );
+                    decided += 1;
+                    closed_earth += usize::from(a_earth == 0.0 && a_sun > 0.0);
+                }
+            }
+        }
+        assert!(
+            decided * 10 > lid_faces * 8 && closed_earth > 100,
+            "{decided} decided of {lid_faces}, {closed_earth} dark to the Earth only"
         );
     }
 

@@ -53,6 +53,7 @@ use crate::scene::Scene;
 use caps::{CapStates, CapTree, LidState};
 use glam::{DVec2, DVec3};
 use grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
+use parts::PartCover;
 use parts::{Cover, PartShadow, PatchParts, Silhouette};
 use rayon::prelude::*;
 use sampler::Sampler;
@@ -221,6 +222,10 @@ pub struct Visibility {
     part_of: Vec<u32>,
     /// Each part's bounding sphere (centre, radius), m.
     part_spheres: Vec<(DVec3, f64)>,
+    /// Each part's bounding box as its 8 corners, m ([`Visibility::part_cover`]).
+    part_boxes: Vec<[DVec3; 8]>,
+    /// Faces of no part (a lone plate).
+    loose: Vec<u32>,
     /// Per part: planes its hull lies behind ([`parts::hull_planes`]); `None` for a part
     /// that cannot hide a face whole.
     part_planes: Vec<Option<Vec<(DVec3, f64)>>>,
@@ -276,6 +281,8 @@ struct ExactScratch {
     part_hits: [Vec<u32>; 3],
     /// Per direction: what the face's cover candidates settle ([`Visibility::settle_by_parts`]).
     settled: [Settled; 3],
+    /// Per direction, per part: the other parts' cover test against it whole.
+    part_covers: [Vec<PartCover>; 3],
     /// The face's vertices projected across the direction being settled.
     across: Vec<DVec2>,
 }
@@ -323,6 +330,13 @@ impl Cache {
         self.kept = [None, None, None];
     }
 }
+
+/// Fewest faces of a part for the cover test to be tried against it whole first
+/// ([`Visibility::part_cover`]): a box's six faces gain nothing from it.
+const PART_COVER_MIN_FACES: usize = 32;
+/// Most loose faces (of no part) a face is tested against for being clear of shadows
+/// along a direction ([`Visibility::settle_by_parts`]).
+const MAX_LOOSE: usize = 8;
 
 /// K in the leaf size K·budget/√A (see [`Visibility::visible_area`]).
 const LEAF_SIZE_FACTOR: f64 = 8.0;
@@ -493,11 +507,32 @@ impl Visibility {
             }
         }
         let patch_parts = PatchParts::new(&patches, &part_of);
+        let part_boxes = parts
+            .iter()
+            .map(|p| {
+                let (lo, hi) = p
+                    .vertices
+                    .iter()
+                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
+                        (lo.min(*v), hi.max(*v))
+                    });
+                std::array::from_fn(|i| {
+                    let pick =
+                        |bit: usize, axis: usize| if i & bit == 0 { lo[axis] } else { hi[axis] };
+                    DVec3::new(pick(1, 0), pick(2, 1), pick(4, 2))
+                })
+            })
+            .collect();
+        let loose = (0..geoms.len() as u32)
+            .filter(|&g| part_of[g as usize] == NO_PART)
+            .collect();
         Visibility {
             mode,
             occluder,
             part_of,
             part_spheres,
+            part_boxes,
+            loose,
             part_planes,
             part_cones,
             lid_blockers,
@@ -554,9 +589,28 @@ impl Visibility {
         if g == face || !reached {
             return;
         }
+        if let Some(blocker) = self.blocker(face, n, g, d) {
+            out.push(blocker);
+        }
+    }
+
+    /// Can face `g` shadow `face` (side normal `n`) along unit `d`? Its reach first, then
+    /// [`Visibility::blocker`]'s proofs.
+    fn may_block(&self, face: usize, n: DVec3, g: usize, d: DVec3) -> bool {
+        let (f, o) = (&self.faces[face], &self.faces[g]);
+        g != face
+            && reaches(f.centroid, f.radius, o.centroid, o.radius, d)
+            && self.blocker(face, n, g, d).is_some()
+    }
+
+    /// Face `g` as a blocker of `face` (side normal `n`) along unit `d`, given that it
+    /// reaches it; `None` when a proof rules it out.
+    #[inline]
+    fn blocker(&self, face: usize, n: DVec3, g: usize, d: DVec3) -> Option<Blocker> {
+        let (f, o) = (&self.faces[face], &self.faces[g]);
         // the occluder must reach in front of the face's lit/seen side
         if !reaches_front(o, n, f.centroid, self.tol) {
-            return;
+            return None;
         }
         let blocker = Blocker {
             face: g as u32,
@@ -574,14 +628,14 @@ impl Visibility {
         };
         // half-space proof with the face's own vertices
         if blocker.half_space_clear(d, &f.vertices, self.tol) {
-            return;
+            return None;
         }
         // a plate much larger than the face (a solar panel over a dish's facet): no line
         // from the face meets it when all their meets with its plane lie beyond one edge
         if o.radius > LARGE_BLOCKER * f.radius && outline_clear(o, d, &f.vertices, self.tol) {
-            return;
+            return None;
         }
-        out.push(blocker);
+        Some(blocker)
     }
 
     /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on
@@ -640,12 +694,17 @@ impl Visibility {
         let min_size = LEAF_SIZE_FACTOR * budget / f.area.sqrt();
         // Along a direction that one part hides the whole face from, it is dark whatever
         // else lies there: no blockers to search or clip (a dish's back behind the bus).
+        // Along one that nothing can shadow it from, it is lit (or seen) whole.
         cache.exact.settled.iter_mut().for_each(Settled::clear);
-        let hidden = self.settle_by_parts(cache, face, side, &directions);
+        let [hidden, clear] = self.settle_by_parts(cache, face, side, &directions);
         if hidden[0] {
             return (0.0, 0.0, 0);
         }
-        let directions = [0, 1, 2].map(|k| directions[k].filter(|_| !hidden[k]));
+        let lit = |k: usize, a: f64| if hidden[k] { 0.0 } else { a };
+        let directions = [0, 1, 2].map(|k| directions[k].filter(|_| !hidden[k] && !clear[k]));
+        if directions.iter().all(Option::is_none) {
+            return (lit(1, f.pieces_area), lit(2, f.pieces_area), 0);
+        }
         // the blocker lists' buffers are the cache's, kept from face to face
         let mut blockers = std::mem::take(&mut cache.blockers);
         blockers.iter_mut().for_each(Vec::clear);
@@ -660,7 +719,6 @@ impl Visibility {
         );
         let (a_sun, a_earth, rays) = self.shadowed_area(cache, face, side, &directions, &mut s);
         cache.blockers = std::mem::take(&mut s.blockers);
-        let lit = |k: usize, a: f64| if hidden[k] { 0.0 } else { a };
         (lit(1, a_sun), lit(2, a_earth), rays)
     }
 
@@ -748,35 +806,73 @@ impl Visibility {
         hull
     }
 
-    /// Per direction: is `face` (on side `side`) hidden whole along it by one convex part?
-    /// What else its cover candidates settle goes to `cache.exact.settled`
-    /// ([`parts::Silhouette::cover`]).
+    /// Per direction: is `face` (on side `side`) hidden whole along it by one convex part
+    /// (first array), or can nothing shadow it along it (second)? What else its cover
+    /// candidates settle goes to `cache.exact.settled` ([`parts::Silhouette::cover`]).
+    /// Parts are tested first against the face's whole part ([`Visibility::part_cover`]),
+    /// then against the face.
     fn settle_by_parts(
         &self,
         cache: &mut Cache,
         face: usize,
         side: f64,
         directions: &[Option<DVec3>; 3],
-    ) -> [bool; 3] {
+    ) -> [[bool; 3]; 2] {
         let f = &self.faces[face];
+        let side_index = usize::from(side < 0.0);
         let n = f.normal * side;
-        let covers = &f.covers[usize::from(side < 0.0)];
-        let mut hidden = [false; 3];
+        let covers = &f.covers[side_index];
+        let (mut hidden, mut clear) = ([false; 3], [false; 3]);
         if covers.is_empty() || f.vertices.is_empty() {
-            return hidden;
+            return [hidden, clear];
         }
         // beyond the convexity proof's tolerance, which the hull may stand out by
         let margin = 2.0 * self.tol;
+        let own = self.part_of[face];
+        // the face's part as a whole is tested only for parts of many faces, where it
+        // saves many faces' tests; and nothing but other parts (and loose faces) can shadow
+        // a face that faces out of its own convex part
+        let whole_part = own != NO_PART
+            && self.parts[own as usize].faces.len() >= PART_COVER_MIN_FACES
+            && self.parts.len() <= 64;
+        let others = if whole_part && f.own_outside[side_index] {
+            (u64::MAX >> (64 - self.parts.len())) & !(1u64 << own)
+        } else {
+            u64::MAX // never all settled: no direction is called clear
+        };
         let x = &mut cache.exact;
         for (k, d) in directions.iter().enumerate() {
             let Some(d) = *d else { continue };
             // the direction the shadows are cast along (`exact_area`'s)
-            let d = above_horizon(d, n);
+            let cast = above_horizon(d, n);
             // the face's corners across d, projected once a part needs its silhouette
             x.across.clear();
             let (silhouettes, settled) = (&mut x.silhouettes[k], &mut x.settled[k]);
+            // (a face whose horizon bends the direction has its own: no part's result)
+            if whole_part && cast == d {
+                let covers = &mut x.part_covers[k];
+                if covers.len() < self.parts.len() {
+                    covers.resize_with(self.parts.len(), Default::default);
+                }
+                let whole = &mut covers[own as usize];
+                if whole.dir != Some(d) {
+                    *whole = self.part_cover(silhouettes, own as usize, d);
+                }
+                if whole.hidden {
+                    hidden[k] = true;
+                    if k == 0 {
+                        break; // unseen: nothing else matters
+                    }
+                    continue;
+                }
+                settled.miss |= whole.miss;
+            }
+            let d = cast;
             for &part in covers {
                 let bit = if part < 64 { 1u64 << part } else { 0 };
+                if settled.miss & bit != 0 {
+                    continue; // settled for the whole part
+                }
                 let p = part as usize;
                 let sphere = self.part_spheres[p];
                 if !reaches(f.centroid, f.radius, sphere.0, sphere.1, d) {
@@ -813,8 +909,59 @@ impl Visibility {
             if k == 0 && hidden[0] {
                 break; // unseen: nothing else matters
             }
+            clear[k] = !hidden[k]
+                && others & !settled.miss == 0
+                && self.loose.len() <= MAX_LOOSE
+                && self
+                    .loose
+                    .iter()
+                    .all(|&g| !self.may_block(face, n, g as usize, d));
         }
-        hidden
+        [hidden, clear]
+    }
+
+    /// The cover test of every other part against part `p` as a whole along unit `d`
+    /// ([`parts::PartCover`]): against the convex hull of the corners of `p`'s bounding
+    /// box, which holds every face of `p`, so what holds for it holds for each of them.
+    fn part_cover(&self, silhouettes: &mut Vec<Silhouette>, p: usize, d: DVec3) -> PartCover {
+        let corners = &self.part_boxes[p];
+        let (u, w) = Silhouette::axes(d);
+        let across = corners.map(|c| DVec2::new(c.dot(u), c.dot(w)));
+        let margin = 2.0 * self.tol;
+        let (centre, radius) = self.part_spheres[p];
+        let mut out = PartCover {
+            dir: Some(d),
+            ..PartCover::default()
+        };
+        for (q, &sphere) in self.part_spheres.iter().enumerate().take(64) {
+            let bit = 1u64 << q;
+            if q == p {
+                continue;
+            }
+            if !reaches(centre, radius, sphere.0, sphere.1, d) {
+                out.miss |= bit;
+                continue;
+            }
+            let Some(planes) = &self.part_planes[q] else {
+                continue;
+            };
+            let Some(ahead) = (parts::Planes { planes, sphere }).settle(corners, d, margin) else {
+                out.miss |= bit;
+                continue;
+            };
+            match self
+                .silhouette(silhouettes, q as u32, d)
+                .cover(ahead, &across, margin)
+            {
+                Cover::Hidden => {
+                    out.hidden = true;
+                    break;
+                }
+                Cover::Miss => out.miss |= bit,
+                Cover::Ahead | Cover::Unknown => {}
+            }
+        }
+        out
     }
 
     /// [`Visibility::visible_area`] for a face that its own cap's lid does not decide
@@ -2138,12 +2285,20 @@ mod tests {
         // What `settle_by_parts` claims of a part along a direction, checked by f64 rays
         // from 64 random points of the face against the part's own triangles (no
         // tolerance: the claims hold by a margin far above rounding): Hidden, every ray
-        // meets the part; Miss, none does; Ahead, no ray the other way meets it. The cluttered box-wing has boxes behind which a dish's
-        // back and plates hide, beside which others pass, and a dish a plate cuts.
+        // meets the part; Miss, none does; Ahead, no ray the other way meets it; Clear, no
+        // ray meets any other face at all. The cluttered box-wing has boxes behind which
+        // a dish's back and plates hide, beside which others pass, and a dish a plate
+        // cuts; its dish is a part of many faces, tested whole first (`part_cover`).
         let vis = visibility_of(cluttered_box_wing());
         let mut rnd = crate::test_rng(5);
         let mut cache = Cache::default();
-        let (mut hidden, mut missed, mut ahead) = (0, 0, 0);
+        let (mut hidden, mut missed, mut ahead, mut clear) = (0, 0, 0, 0);
+        let meets_another = |face: usize, p: DVec3, d: DVec3| {
+            vis.faces
+                .iter()
+                .enumerate()
+                .any(|(j, o)| j != face && o.pieces.iter().any(|t| ray_meets_triangle(p, d, t)))
+        };
         let hits = |part: u32, p: DVec3, d: DVec3| {
             vis.parts[part as usize].faces.iter().any(|&f| {
                 vis.faces[f as usize]
@@ -2152,8 +2307,16 @@ mod tests {
                     .any(|t| ray_meets_triangle(p, d, t))
             })
         };
-        for _ in 0..30 {
-            let (view, sun) = (random_unit(&mut rnd), random_unit(&mut rnd));
+        // near ±z too, where the bus lies behind the dish or the dish behind the bus
+        let axial = [
+            (DVec3::new(0.05, 0.03, 1.0), DVec3::new(-0.04, 0.06, -1.0)),
+            (DVec3::new(-0.02, -0.07, -1.0), DVec3::new(0.03, 0.01, 1.0)),
+        ];
+        for trial in 0..32 {
+            let (view, sun) = match axial.get(trial) {
+                Some(&(v, s)) => (v.normalize(), s.normalize()),
+                None => (random_unit(&mut rnd), random_unit(&mut rnd)),
+            };
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
                 for side in [1.0, -1.0] {
@@ -2163,7 +2326,7 @@ mod tests {
                     }
                     let dirs = [Some(view), (n.dot(sun) > 0.0).then_some(sun), None];
                     cache.exact.settled.iter_mut().for_each(Settled::clear);
-                    let dark = vis.settle_by_parts(&mut cache, i, side, &dirs);
+                    let [dark, unshadowed] = vis.settle_by_parts(&mut cache, i, side, &dirs);
                     let points: Vec<DVec3> = (0..64)
                         .map(|_| {
                             let t = g.pieces[(rnd() * g.pieces.len() as f64) as usize];
@@ -2179,11 +2342,17 @@ mod tests {
                         let d = above_horizon(d, n);
                         if dark[k] {
                             hidden += 1;
-                            let by = g.covers[usize::from(side < 0.0)]
-                                .iter()
-                                .any(|&part| points.iter().all(|&p| hits(part, p, d)));
+                            let by = (0..vis.parts.len() as u32)
+                                .any(|part| points.iter().all(|&p| hits(part, p, d)));
                             assert!(by, "face {i}: said hidden along {d}, but rays pass");
                             continue;
+                        }
+                        if unshadowed[k] {
+                            clear += 1;
+                            assert!(
+                                points.iter().all(|&p| !meets_another(i, p, d)),
+                                "face {i}: said clear along {d}, but a ray meets a face"
+                            );
                         }
                         let settled = &cache.exact.settled[k];
                         for part in 0..vis.parts.len().min(64) as u32 {
@@ -2207,8 +2376,8 @@ mod tests {
             }
         }
         assert!(
-            hidden > 100 && missed > 1000 && ahead > 100,
-            "{hidden} hidden, {missed} missed, {ahead} ahead"
+            hidden > 100 && missed > 1000 && ahead > 100 && clear > 300,
+            "{hidden} hidden, {missed} missed, {ahead} ahead, {clear} clear"
         );
     }
 

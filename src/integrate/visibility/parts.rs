@@ -470,6 +470,19 @@ pub(super) enum Cover {
     Unknown,
 }
 
+/// What the other parts' cover tests settle for a whole part along one direction (the
+/// direction's cache, kept while it repeats): parts that no line from it meets, or one
+/// that every line from it meets wholly ahead. Valid for each face of the part.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct PartCover {
+    /// The direction it was made for.
+    pub(super) dir: Option<DVec3>,
+    /// Parts (bit q for part q < 64) that no line from the part along it meets.
+    pub(super) miss: u64,
+    /// Some part hides the whole part along it.
+    pub(super) hidden: bool,
+}
+
 /// Most parts' planes kept for [`Silhouette::cover`]: a finely meshed cap keeps its lid's.
 const MAX_COVER_PLANES: usize = 64;
 

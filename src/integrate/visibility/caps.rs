@@ -65,7 +65,11 @@ const BLOCKED: u8 = 2;
 
 impl CapTree {
     /// The tree over `part`'s faces; each face's vertices must be among the part's.
-    pub(super) fn new(part: &ConvexPart, geoms: &[FaceGeom]) -> CapTree {
+    pub(super) fn new(
+        part: &ConvexPart,
+        vertices: &super::parts::VertexIndex,
+        geoms: &[FaceGeom],
+    ) -> CapTree {
         let mut tree = CapTree {
             order: part.faces.clone(),
             nodes: Vec::with_capacity(2 * part.faces.len() / LEAF_FACES + 1),
@@ -81,7 +85,8 @@ impl CapTree {
             let g = &geoms[f as usize];
             tree.balls.push((g.centroid, g.radius));
             for v in &g.vertices {
-                let i = super::parts::vertex_index(part, v)
+                let i = vertices
+                    .get(v)
                     .expect("a cap face's vertices are the cap's");
                 tree.corners.push(i as u32);
             }

@@ -464,7 +464,9 @@ impl Visibility {
         // Which parts shadow each face whole: faces × parts work, and lists that grow with
         // it, so a mesh of very many parts (a debris cloud) keeps tiles instead.
         let part_spheres = parts::spheres(&parts);
-        let part_cones = parts::normal_cones(&parts, &geoms, faces, &corners);
+        let indices: Vec<parts::VertexIndex> =
+            parts.par_iter().map(parts::VertexIndex::new).collect();
+        let part_cones = parts::normal_cones(&parts, &indices, &geoms, faces, &corners);
         // the caps' trees (one sequential build each) alongside the parallel part shadows
         let (shadows, cap_trees) = rayon::join(
             || {
@@ -474,7 +476,8 @@ impl Visibility {
             || -> Vec<Option<CapTree>> {
                 parts
                     .par_iter()
-                    .map(|p| p.lid.is_some().then(|| CapTree::new(p, &geoms)))
+                    .zip(&indices)
+                    .map(|(p, index)| p.lid.is_some().then(|| CapTree::new(p, index, &geoms)))
                     .collect()
             },
         );

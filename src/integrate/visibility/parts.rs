@@ -258,67 +258,125 @@ const LID_WORK_LIMIT: usize = 200_000_000;
 /// |axis·d| ≤ sin(half-angle). On a finely meshed dish that leaves a narrow band.
 pub(super) fn normal_cones(
     parts: &[ConvexPart],
+    indices: &[VertexIndex],
     geoms: &[FaceGeom],
     faces: &crate::geometry::Faces,
     corners: &[[DVec3; 3]],
 ) -> Vec<Vec<[f64; 4]>> {
     parts
         .par_iter()
-        .map(|part| {
-            let index = |p: &DVec3| vertex_index(part, p);
-            let mut normals: Vec<Vec<DVec3>> = vec![Vec::new(); part.vertices.len()];
-            for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
-                let out = if ahead {
-                    -geoms[f as usize].normal
-                } else {
-                    geoms[f as usize].normal
-                };
-                for &t in &faces.faces[f as usize].triangles {
-                    for c in &corners[t as usize] {
-                        if let Some(i) = index(c) {
-                            if !normals[i].contains(&out) {
-                                normals[i].push(out);
-                            }
+        .zip(indices)
+        .map(|(part, vertices)| {
+            let index = |p: &DVec3| vertices.get(p);
+            // (vertex, outward normal, from the lid) at every face corner, in face order
+            // and then the lid's; gathered by vertex (a counting sort, which keeps that
+            // order): each vertex's normals side by side in the order they were met (one
+            // flat list, the corners found in parallel, where a list per vertex cost an
+            // allocation each)
+            let mut at: Vec<(u32, DVec3, bool)> = part
+                .faces
+                .par_iter()
+                .zip(&part.hull_ahead)
+                .flat_map_iter(|(&f, &ahead)| {
+                    let g = &geoms[f as usize];
+                    let out = if ahead { -g.normal } else { g.normal };
+                    faces.faces[f as usize]
+                        .triangles
+                        .iter()
+                        .flat_map(|&t| corners[t as usize].iter())
+                        .filter_map(move |c| index(c).map(|i| (i as u32, out, false)))
+                })
+                .collect();
+            if let Some(lid) = &part.lid {
+                at.extend(
+                    lid.corners
+                        .iter()
+                        .filter_map(|c| index(c).map(|i| (i as u32, lid.normal, true))),
+                );
+            }
+            let n = part.vertices.len();
+            let mut start = vec![0u32; n + 1];
+            for e in &at {
+                start[e.0 as usize + 1] += 1;
+            }
+            for i in 0..n {
+                start[i + 1] += start[i];
+            }
+            let mut next = start.clone();
+            let mut by_vertex = vec![(DVec3::ZERO, false); at.len()];
+            for &(i, normal, from_lid) in &at {
+                let slot = &mut next[i as usize];
+                by_vertex[*slot as usize] = (normal, from_lid);
+                *slot += 1;
+            }
+            let mut ns: Vec<DVec3> = Vec::new();
+            let cones: Vec<[f64; 4]> = (0..n)
+                .map(|i| {
+                    // each face's normal once (a face of several triangles meets a vertex
+                    // more than once), the lid's always
+                    ns.clear();
+                    for &(normal, from_lid) in &by_vertex[start[i] as usize..start[i + 1] as usize]
+                    {
+                        if from_lid || !ns.contains(&normal) {
+                            ns.push(normal);
                         }
                     }
-                }
-            }
-            if let Some(lid) = &part.lid {
-                for c in &lid.corners {
-                    if let Some(i) = index(c) {
-                        normals[i].push(lid.normal);
-                    }
-                }
-            }
-            normals
-                .iter()
-                .map(|ns| {
-                    let sum: DVec3 = ns.iter().sum();
-                    if ns.is_empty() || sum.length_squared() < 1e-12 {
-                        return [0.0, 0.0, 1.0, 2.0];
-                    }
-                    let axis = sum.normalize();
-                    let min_cos = ns.iter().map(|n| n.dot(axis)).fold(1.0, f64::min);
-                    let sin = if min_cos <= 1e-3 {
-                        2.0 // 90° or more: every direction
-                    } else {
-                        // padded well beyond rounding: a vertex a hair inside the boundary
-                        // must still count as on it
-                        (1.0 - min_cos * min_cos).max(0.0).sqrt() + 1e-6
-                    };
-                    [axis.x, axis.y, axis.z, sin]
+                    cone_of(&ns)
                 })
-                .collect()
+                .collect();
+            cones
         })
         .collect()
 }
 
-/// Where the point `p` is among `part`'s vertices (which are in [`super::sort_dedup`]'s
-/// order), if it is one.
-pub(super) fn vertex_index(part: &ConvexPart, p: &DVec3) -> Option<usize> {
-    part.vertices
-        .binary_search_by(|v| super::position_order(v, p))
-        .ok()
+/// The cone of a vertex without normals: every direction.
+const NO_CONE: [f64; 4] = [0.0, 0.0, 1.0, 2.0];
+
+/// The cone (axis, sin of its half-angle; > 1 for every direction) of unit normals `ns`.
+fn cone_of(ns: &[DVec3]) -> [f64; 4] {
+    let sum: DVec3 = ns.iter().sum();
+    if ns.is_empty() || sum.length_squared() < 1e-12 {
+        return NO_CONE;
+    }
+    let axis = sum.normalize();
+    let min_cos = ns.iter().map(|n| n.dot(axis)).fold(1.0, f64::min);
+    let sin = if min_cos <= 1e-3 {
+        2.0 // 90° or more: every direction
+    } else {
+        // padded well beyond rounding: a vertex a hair inside the boundary must still
+        // count as on it
+        (1.0 - min_cos * min_cos).max(0.0).sqrt() + 1e-6
+    };
+    [axis.x, axis.y, axis.z, sin]
+}
+
+/// A part's vertices by position, for finding where a face's corner is among them: a
+/// hash of the coordinates (a bisection per corner, 36k of them on the fine dish, cost
+/// its preparation 5 ms).
+pub(super) struct VertexIndex(rustc_hash::FxHashMap<[u64; 3], u32>);
+
+impl VertexIndex {
+    pub(super) fn new(part: &ConvexPart) -> VertexIndex {
+        VertexIndex(
+            part.vertices
+                .iter()
+                .enumerate()
+                .map(|(i, v)| (position_key(v), i as u32))
+                .collect(),
+        )
+    }
+
+    /// Where the point `p` is among the part's vertices, if it is one.
+    #[inline]
+    pub(super) fn get(&self, p: &DVec3) -> Option<usize> {
+        self.0.get(&position_key(p)).map(|&i| i as usize)
+    }
+}
+
+/// The coordinates' bits, −0 taken as +0: equal keys exactly for equal points.
+#[inline]
+fn position_key(p: &DVec3) -> [u64; 3] {
+    [p.x, p.y, p.z].map(|c| (c + 0.0).to_bits())
 }
 
 /// A part's silhouette along one direction, kept for the epoch.

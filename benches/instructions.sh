@@ -3,7 +3,8 @@
 # a measure the machine's noise does not move (timings on the shared 2-core machines vary
 # by ±40 %). Usage: benches/instructions.sh FLAT_LEVELS DISH_RINGS DISH_SECTORS [EPOCHS
 # [EXAMPLE OPTIONS...]] (e.g. `3 48 128` for the fine-dish box-wing, `3 48 128 342
-# --sun-drift 0.01` with a Sun that never repeats). Needs valgrind (Debian package `valgrind`).
+# --sun-drift 0.01` with a Sun that never repeats, `3 48 128 31 --first 310` for the
+# stretch at phase 155°–170°). Needs valgrind (Debian package `valgrind`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${4:-342}

@@ -5,6 +5,9 @@
 //! A fifth argument names a file to write the light curve to (irradiance per epoch, one
 //! per line, full precision), to compare two builds. `--sun-drift DEG` turns the Sun by
 //! DEG about the body's z axis from epoch to epoch, so that no Sun direction repeats.
+//! `--first K` starts at the request's epoch K (the phase angle sweeps 0.5° an epoch), to
+//! measure one stretch of the light curve: `benches/instructions.sh 3 48 128 31 --first
+//! 310` counts the fine dish's epochs at phase 155°–170°.
 
 use glint::geometry::builtin;
 use glint::scene::{Limits, Scene};
@@ -21,6 +24,15 @@ fn main() {
             .expect("--sun-drift DEG");
         raw.drain(i..i + 2);
         deg.to_radians()
+    });
+    // `--first K`: the epochs from the request's K-th on (wrapping round)
+    let first = raw.iter().position(|a| a == "--first").map_or(0, |i| {
+        let k: usize = raw
+            .get(i + 1)
+            .and_then(|k| k.parse().ok())
+            .expect("--first K");
+        raw.drain(i..i + 2);
+        k
     });
     let sphere = raw
         .first()
@@ -48,7 +60,9 @@ fn main() {
         None => builtin::box_wing_with(rings, sectors, flat),
     };
     let base = scene.epochs.clone();
-    scene.epochs = (0..epochs as usize).map(|i| base[i % base.len()]).collect();
+    scene.epochs = (first..first + epochs as usize)
+        .map(|i| base[i % base.len()])
+        .collect();
     if let Some(step) = drift {
         for (i, e) in scene.epochs.iter_mut().enumerate() {
             e.sun = glam::DQuat::from_rotation_z(step * i as f64) * e.sun;

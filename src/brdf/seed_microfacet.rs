@@ -73,7 +73,6 @@ pub fn slope_distribution(cos_a: f64, slope_rms: f64) -> f64 {
     exponent.exp() / (d2 * c2 * c2)
 }
 
-/// Torrance–Sparrow V-cavity masking/shadowing: min(1, 2cosα cosθr/cosβ, 2cosα cosθi/cosβ).
 /// The least cos² α of the half vector below which [`slope_distribution`] is exactly
 /// zero for this δ (its exponent below −700), with a margin far above the exponent's
 /// rounding error; 0 (never) for a δ outside (0, ∞).
@@ -86,6 +85,7 @@ pub fn lobe_vanishes_below(slope_rms: f64) -> f64 {
     (1.0 - 1e-6) / (1.0 + 700.0 * d2)
 }
 
+/// Torrance–Sparrow V-cavity masking/shadowing: min(1, 2cosα cosθr/cosβ, 2cosα cosθi/cosβ).
 #[inline]
 pub fn v_cavity(cos_a: f64, cos_b: f64, ci: f64, cr: f64) -> f64 {
     if cos_b <= 0.0 {

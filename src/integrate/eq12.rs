@@ -207,7 +207,15 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                 }
                 None => (lf.area, lf.area),
                 Some(vis) => {
-                    let dirs = uncertain(v, l, earthshine.shadow_dir, lf.sun, lf.earth);
+                    let dirs = Uncertain {
+                        view: v,
+                        sun: (lf.sun > 0.0).then_some(l),
+                        earth: if lf.earth > 0.0 {
+                            earthshine.shadow_dir
+                        } else {
+                            None
+                        },
+                    };
                     // Area of this face whose misclassification costs the tolerance's
                     // share of the signal.
                     let weight = lf.sun + lf.earth;
@@ -259,17 +267,6 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         },
         rays,
     )
-}
-
-/// The directions whose shadows matter for a face seen along `v` with these Sun and
-/// earthshine terms: the Sun's `l` when sunlit, earthshine's `shadow_dir` when earthlit.
-#[inline]
-fn uncertain(v: DVec3, l: DVec3, shadow_dir: Option<DVec3>, sun: f64, earth: f64) -> Uncertain {
-    Uncertain {
-        view: v,
-        sun: (sun > 0.0).then_some(l),
-        earth: if earth > 0.0 { shadow_dir } else { None },
-    }
 }
 
 /// Running sums of one epoch: W/sr from the Sun and from earthshine, and the seen and

@@ -740,8 +740,8 @@ impl Visibility {
         {
             return None;
         }
-        let dirs = [Some(view), sun, earth];
-        for (k, d) in dirs.iter().enumerate() {
+        let dirs = Uncertain { view, sun, earth };
+        for (k, d) in [Some(view), sun, earth].iter().enumerate() {
             let Some(d) = *d else { continue };
             let states = &mut cache.cap_states[k];
             states.resize_with(self.parts.len(), Default::default);
@@ -766,8 +766,8 @@ impl Visibility {
     }
 
     /// For a face that its own cap's lid alone decides ([`Visibility::lid_decides`]): the
-    /// lid's state along each direction. Along a direction not asked for, `Open`; once the
-    /// view is closed, the rest is not looked up.
+    /// lid's state along each direction ([`lid_states`]), walking the cap's tree where the
+    /// epoch has not yet.
     #[inline]
     fn own_lid_states(
         &self,
@@ -780,16 +780,9 @@ impl Visibility {
             .lid
             .as_ref()
             .expect("caps have lids");
-        let mut lids = [LidState::Open; 3];
-        for (k, d) in directions.iter().enumerate() {
-            if let Some(d) = *d {
-                lids[k] = self.lid_state(&mut cache.cap_states[k], lid, cap, face, d);
-                if k == 0 && lids[0] == LidState::Closed {
-                    break;
-                }
-            }
-        }
-        lids
+        lid_states(directions, |k, d| {
+            self.lid_state(&mut cache.cap_states[k], lid, cap, face, d)
+        })
     }
 
     /// Part `part`'s silhouette along unit `d`, from the direction's cache (computed unless
@@ -1228,7 +1221,7 @@ impl Visibility {
 pub struct LidTable<'a> {
     vis: &'a Visibility,
     /// View, Sun, earthshine shadow direction, as the states were made for.
-    dirs: [Option<DVec3>; 3],
+    dirs: Uncertain,
     /// Per direction, per part: its face states (a cap's), in tree order.
     states: [&'a [CapStates]; 3],
 }
@@ -1253,23 +1246,14 @@ impl LidTable<'_> {
             return None;
         }
         let (cap, slot) = (vis.part_of[face] as usize, vis.cap_slot[face] as usize);
-        let state = |k: usize| self.states[k][cap].states[slot];
-        let view = state(0);
-        if view == LidState::Closed {
-            return Some((0.0, 0.0));
-        }
-        let open = |lit: bool, k: usize| !lit || self.dirs[k].is_none();
-        let sun = if open(sunlit, 1) {
-            LidState::Open
-        } else {
-            state(1)
+        let dirs = Uncertain {
+            sun: self.dirs.sun.filter(|_| sunlit),
+            earth: self.dirs.earth.filter(|_| earthlit),
+            ..self.dirs
         };
-        // as `face_directions` filters the earthshine direction
-        let earth = match self.dirs[2] {
-            Some(e) if earthlit && (f.normal * side).dot(e) > 1e-3 => state(2),
-            _ => LidState::Open,
-        };
-        lid_decided(&[view, sun, earth], f.pieces_area)
+        let directions = face_directions(&dirs, f.normal * side);
+        let lids = lid_states(&directions, |k, _| self.states[k][cap].states[slot]);
+        lid_decided(&lids, f.pieces_area)
     }
 }
 
@@ -1280,6 +1264,25 @@ impl LidTable<'_> {
 fn face_directions(dirs: &Uncertain, n: DVec3) -> [Option<DVec3>; 3] {
     let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
     [Some(dirs.view), dirs.sun, earth]
+}
+
+/// A face's own lid's state along each of `directions` (view, Sun, Earth), by `state`:
+/// `Open` along one not asked for; once the view is closed, the rest is not looked up.
+#[inline]
+fn lid_states(
+    directions: &[Option<DVec3>; 3],
+    mut state: impl FnMut(usize, DVec3) -> LidState,
+) -> [LidState; 3] {
+    let mut lids = [LidState::Open; 3];
+    for (k, d) in directions.iter().enumerate() {
+        if let Some(d) = *d {
+            lids[k] = state(k, d);
+            if k == 0 && lids[0] == LidState::Closed {
+                break;
+            }
+        }
+    }
+    lids
 }
 
 /// The areas (m²) of a face of area `area` whose own lid has `lids` along view, Sun and

@@ -310,7 +310,7 @@ pub(super) fn normal_cones(
                 *slot += 1;
             }
             let mut ns: Vec<DVec3> = Vec::new();
-            let cones: Vec<[f64; 4]> = (0..n)
+            (0..n)
                 .map(|i| {
                     // each face's normal once (a face of several triangles meets a vertex
                     // more than once), the lid's always
@@ -323,8 +323,7 @@ pub(super) fn normal_cones(
                     }
                     cone_of(&ns)
                 })
-                .collect();
-            cones
+                .collect()
         })
         .collect()
 }

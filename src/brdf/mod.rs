@@ -308,8 +308,9 @@ mod tests {
         // `Directions::projected_given` answers from `AwayFromLobe` for most faces; there
         // it must equal the model's own value exactly (a light curve must not depend on
         // the path). Normals are drawn about the half vector so that many land at the
-        // edge where the lobe's exponent crosses −700, and kd = 0 makes the lobe's tiny
-        // tail (e^−700 ≈ 1e−304) visible instead of lost in the diffuse term.
+        // edge where the lobe's exponent crosses −LOBE_TAIL_EXPONENT, and kd = 0 makes the
+        // lobe's tiny tail (e^−54 ≈ 4e−24 of its peak) visible instead of lost in the
+        // diffuse term.
         let mut rnd = crate::test_rng(31);
         let mut unit = || {
             let d = DVec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
@@ -325,9 +326,9 @@ mod tests {
                         let (l, v) = (unit(), unit());
                         let dirs = Directions::new(brdf, l, v);
                         let Some(h) = half_vector(l, v) else { continue };
-                        // a normal at the lobe's edge angle α₀ (tan²α₀ = 700δ²) from h,
+                        // a normal at the lobe's edge angle α₀ (tan²α₀ = Xδ²) from h,
                         // give or take a little
-                        let edge = (700.0f64).sqrt() * slope;
+                        let edge = seed_microfacet::LOBE_TAIL_EXPONENT.sqrt() * slope;
                         let tilt = edge.atan() * (1.0 + 0.02 * (unit().x));
                         let axis = h.cross(unit()).normalize_or(h.any_orthonormal_vector());
                         let n = glam::DQuat::from_axis_angle(axis, tilt) * h;
@@ -347,7 +348,11 @@ mod tests {
                             "{brdf:?} n {n} l {l} v {v}: {fast} against {model}"
                         );
                         compared += 1;
-                        near_edge += usize::from(model > 0.0 && model < 1e-250);
+                        // a pure lobe within a unit of its cut, on either side
+                        let ca2 = n.dot(h).powi(2);
+                        let u = (1.0 - ca2) / (ca2 * slope * slope);
+                        let edge = (u - seed_microfacet::LOBE_TAIL_EXPONENT).abs() < 1.0;
+                        near_edge += usize::from(edge && kd == 0.0 && brdf == &seed);
                     }
                 }
             }

@@ -21,6 +21,14 @@ pub struct Scratch {
     image: super::image::ImageScratch,
 }
 
+/// What lights faces of one material at this epoch, from the Sun and each earthshine
+/// beam (irradiance W/m² and the BRDF's per-epoch part).
+struct MaterialLight<'a> {
+    two_sided: bool,
+    sun: SunLight<'a>,
+    beams: Vec<(f64, Fixed<'a>)>,
+}
+
 /// A face that reflects light towards the observer at this epoch.
 struct LitFace {
     face: u32,
@@ -96,20 +104,17 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     // Pass 1: which faces send light to the observer, and how much if fully visible.
     // Per material, what does not depend on the face is computed once: the Sun's and each
     // earthshine beam's half vector and Fresnel term.
-    let suns: Vec<SunLight> = scene
+    let lights: Vec<MaterialLight> = scene
         .materials
         .iter()
-        .map(|m| SunLight::new(&m.brdf, l, v, sun_radius))
-        .collect();
-    let beams_fixed: Vec<Vec<(f64, Fixed)>> = scene
-        .materials
-        .iter()
-        .map(|m| {
-            earthshine
+        .map(|m| MaterialLight {
+            two_sided: m.two_sided,
+            sun: SunLight::new(&m.brdf, l, v, sun_radius),
+            beams: earthshine
                 .beams
                 .iter()
                 .map(|b| (b.irradiance, Fixed::new(&m.brdf, b.dir, v)))
-                .collect()
+                .collect(),
         })
         .collect();
     scratch.lit.clear();
@@ -126,14 +131,16 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         ),
         _ => None,
     };
+    // Without rays or pixels every face is seen and lit whole: summed here too, in the
+    // order pass 2 would, with no list between the passes.
+    let whole = p.visibility.is_none() && p.image.is_none();
     let mut decided = Sums::default();
     for (i, face) in p.faces.faces.iter().enumerate() {
-        let m = face.material as usize;
-        let material = &scene.materials[m];
+        let light = &lights[face.material as usize];
         let cr = face.normal.dot(v);
         let side = if cr > 0.0 {
             1.0
-        } else if material.two_sided && cr < 0.0 {
+        } else if light.two_sided && cr < 0.0 {
             -1.0
         } else {
             continue;
@@ -146,16 +153,21 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         let cr = cr.abs();
         let sun_term = if es > 0.0 {
             // the Sun as a disk: a narrow lobe's glint is the disk's reflection, not a spike
-            es * suns[m].projected_given(&frame, cr)
+            es * light.sun.projected_given(&frame, cr)
         } else {
             0.0
         };
-        let earth_term: f64 = beams_fixed[m]
+        let earth_term: f64 = light
+            .beams
             .iter()
             .map(|(irradiance, fixed)| irradiance * fixed.projected_given(&frame, cr))
             .sum();
         if sun_term > 0.0 || earth_term > 0.0 {
             unshadowed += (sun_term + earth_term) * face.area;
+            if whole {
+                decided.add(sun_term, earth_term, (face.area, face.area));
+                continue;
+            }
             if let Some(lids) = &lids {
                 if let Some(areas) = lids.decided(i, side, sun_term > 0.0, earth_term > 0.0) {
                     decided.add(sun_term, earth_term, areas);

@@ -355,56 +355,24 @@ impl Visibility {
         let nf = faces.len();
         let k = ((nf as f64).sqrt().round() as usize).clamp(1, 1024);
         let per_patch = nf.div_ceil(k);
-        // per face (pieces and outlines): in parallel
-        let mut geoms: Vec<FaceGeom> = faces
-            .faces
-            .par_iter()
-            .enumerate()
-            .map(|(i, f)| {
-                let mut vertices: Vec<DVec3> = f
-                    .triangles
-                    .iter()
-                    .flat_map(|&t| corners[t as usize])
-                    .collect();
-                sort_dedup(&mut vertices);
-                let (pieces, outline) =
-                    pieces_of(f.normal, f.area, &f.triangles, &corners, &vertices, mode);
-                FaceGeom {
-                    normal: f.normal,
-                    centroid: f.centroid,
-                    radius: f.radius,
-                    area: f.area,
-                    two_sided: scene.materials[f.material as usize].two_sided,
-                    // a convex face's linear tests (which side of a plane) are decided by
-                    // its corners: a subdivided side keeps 4 vertices, not 81
-                    vertices: if outline.is_empty() {
-                        vertices
-                    } else {
-                        outline.clone()
-                    },
-                    pieces_area: pieces.iter().map(triangle_area).sum(),
-                    pieces,
-                    outline,
-                    part_shadows: Vec::new(),
-                    covers: Default::default(),
-                    lid_side: [false; 2],
-                    lid_only: [false; 2],
-                    own_outside: [false; 2],
-                    patch: (i / per_patch) as u32,
+        // The convex parts (with sequential stretches: welding, sorting edges, building
+        // point trees) alongside the faces' own geometry, which is parallel throughout.
+        let (mut geoms, mut parts) = rayon::join(
+            || face_geoms(scene, faces, &corners, mode, per_patch),
+            || {
+                if mode == VisibilityMode::Adaptive && scene.clip_shadows {
+                    convex_parts(mesh, faces, tol)
+                } else {
+                    Vec::new()
                 }
-            })
-            .collect();
+            },
+        );
         let patches: Vec<Patch> = (0..nf.div_ceil(per_patch))
             .map(|p| {
                 let range = (p * per_patch) as u32..((p + 1) * per_patch).min(nf) as u32;
                 patch_of(&geoms[range.start as usize..range.end as usize], range)
             })
             .collect();
-        let mut parts = if mode == VisibilityMode::Adaptive && scene.clip_shadows {
-            convex_parts(mesh, faces, tol)
-        } else {
-            Vec::new()
-        };
         let within_part = PatchWithinPart::new(&patches, &parts, nf);
         let candidates: Vec<Vec<(u32, Side)>> = if mode == VisibilityMode::Centroid {
             Vec::new()
@@ -1508,6 +1476,55 @@ impl Visibility {
         };
         Some((a_sun, a_earth))
     }
+}
+
+/// Each face's geometry for the visibility tests (pieces, outline, vertices), in
+/// parallel; `per_patch` faces (in their spatial order) make a patch.
+fn face_geoms(
+    scene: &Scene,
+    faces: &Faces,
+    corners: &[[DVec3; 3]],
+    mode: VisibilityMode,
+    per_patch: usize,
+) -> Vec<FaceGeom> {
+    faces
+        .faces
+        .par_iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let mut vertices: Vec<DVec3> = f
+                .triangles
+                .iter()
+                .flat_map(|&t| corners[t as usize])
+                .collect();
+            sort_dedup(&mut vertices);
+            let (pieces, outline) =
+                pieces_of(f.normal, f.area, &f.triangles, corners, &vertices, mode);
+            FaceGeom {
+                normal: f.normal,
+                centroid: f.centroid,
+                radius: f.radius,
+                area: f.area,
+                two_sided: scene.materials[f.material as usize].two_sided,
+                // a convex face's linear tests (which side of a plane) are decided by
+                // its corners: a subdivided side keeps 4 vertices, not 81
+                vertices: if outline.is_empty() {
+                    vertices
+                } else {
+                    outline.clone()
+                },
+                pieces_area: pieces.iter().map(triangle_area).sum(),
+                pieces,
+                outline,
+                part_shadows: Vec::new(),
+                covers: Default::default(),
+                lid_side: [false; 2],
+                lid_only: [false; 2],
+                own_outside: [false; 2],
+                patch: (i / per_patch) as u32,
+            }
+        })
+        .collect()
 }
 
 /// A direction at or below a face's horizon (side normal `n`) still lights it through the

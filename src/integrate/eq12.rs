@@ -217,7 +217,8 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                     let (f_sun, f_earth) = scratch.image.fractions(lf.face as usize, lf.area);
                     (f_sun * lf.area, f_earth * lf.area)
                 }
-                None => (lf.area, lf.area),
+                // without rays or pixels pass 1 summed every face (`whole`)
+                None => unreachable!("no face is listed for pass 2 without visibility"),
                 Some(vis) => {
                     let dirs = Uncertain {
                         view: v,

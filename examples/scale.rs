@@ -7,7 +7,8 @@
 //! DEG about the body's z axis from epoch to epoch, so that no Sun direction repeats.
 //! `--first K` starts at the request's epoch K (the phase angle sweeps 0.5° an epoch), to
 //! measure one stretch of the light curve: `benches/instructions.sh 3 48 128 31 --first
-//! 310` counts the fine dish's epochs at phase 155°–170°.
+//! 310` counts the fine dish's epochs at phase 155°–170°. `--obj PATH` also writes the mesh
+//! as OBJ (materials by name), for another renderer to time on the same object.
 
 use glint::geometry::builtin;
 use glint::scene::{Limits, Scene};
@@ -34,6 +35,12 @@ fn main() {
         raw.drain(i..i + 2);
         k
     });
+    // `--obj PATH`: write the mesh that is run, as OBJ
+    let obj = raw.iter().position(|a| a == "--obj").map(|i| {
+        let path = raw.get(i + 1).expect("--obj PATH").clone();
+        raw.drain(i..i + 2);
+        path
+    });
     let sphere = raw
         .first()
         .and_then(|a| a.strip_prefix("sphere:"))
@@ -59,6 +66,11 @@ fn main() {
         Some(level) => builtin::icosphere(level, 1.0),
         None => builtin::box_wing_with(rings, sectors, flat),
     };
+    if let Some(path) = obj {
+        let names: Vec<&str> = scene.materials.iter().map(|m| m.name.as_str()).collect();
+        let text = builtin::to_obj(&scene.mesh, &names, "examples/scale: the mesh it runs");
+        std::fs::write(&path, text).expect("write the OBJ");
+    }
     let base = scene.epochs.clone();
     scene.epochs = (first..first + epochs as usize)
         .map(|i| base[i % base.len()])

@@ -399,8 +399,19 @@ const PART_WORK_LIMIT: usize = 100_000_000;
 
 /// The convex parts of a mesh (see [`ConvexPart`]): faces connected through shared edges
 /// (vertices welded by position), each part checked exactly — every vertex on one side
-/// of every face's plane, within `tol` (m), and its open edges in one plane.
+/// of every face's plane, within `tol` (m), and its open edges in one plane. A cap with a
+/// lid (a dish) is proven so from its edges in linear time ([`Cap::sides`]); other parts
+/// test their vertices against each face's plane.
 pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
+    parts_of(mesh, faces, tol, true)
+        .into_iter()
+        .map(|(part, _)| part)
+        .collect()
+}
+
+/// [`convex_parts`], each with whether its convexity was proven from its edges
+/// ([`Cap::sides`]), which `by_edges = false` never tries.
+fn parts_of(mesh: &Mesh, faces: &Faces, tol: f64, by_edges: bool) -> Vec<(ConvexPart, bool)> {
     let welded = mesh.welded_ids();
     let mut face_of = vec![0u32; mesh.triangles.len()];
     for (i, f) in faces.faces.iter().enumerate() {
@@ -411,11 +422,11 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
     // directed edges by their welded ends, sorted so that each edge's uses are side by
     // side (a sort, not a hash map of lists: no allocation per edge): a shared edge joins
     // two faces
-    let mut edges: Vec<((u32, u32), u32, bool)> = Vec::with_capacity(3 * mesh.triangles.len());
+    let mut edges: Vec<((u32, u32), u32, bool, u32)> = Vec::with_capacity(3 * mesh.triangles.len());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
-            edges.push(((a.min(b), a.max(b)), face_of[t], a < b));
+            edges.push(((a.min(b), a.max(b)), face_of[t], a < b, t as u32));
         }
     }
     edges.par_sort_unstable();
@@ -443,13 +454,15 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
     // other way round (edges inside a merged face cancel like any other), in the
     // direction its triangle runs; sorted, so the lid's corners start from the first
     let mut open: Vec<Vec<(u32, u32)>> = vec![Vec::new(); faces.len()];
+    // and its inner edges: the two triangles that share each (for `cap_sides`)
+    let mut inner: Vec<Vec<(u32, u32)>> = vec![Vec::new(); faces.len()];
     let mut non_manifold = vec![false; faces.len()];
     for adj in uses() {
-        let ((a, b), face, _) = adj[0];
+        let ((a, b), face, _, _) = adj[0];
         let part = root(&mut parent, face) as usize;
         match adj {
-            [(_, _, forward)] => open[part].push(if *forward { (a, b) } else { (b, a) }),
-            [(_, _, x), (_, _, y)] if x != y => {}
+            [(_, _, forward, _)] => open[part].push(if *forward { (a, b) } else { (b, a) }),
+            [(_, _, x, s), (_, _, y, t)] if x != y => inner[part].push((*s, *t)),
             _ => non_manifold[part] = true, // used twice one way, or by three faces
         }
     }
@@ -457,7 +470,7 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
         edges.sort_unstable();
     }
     let mut work = 0usize;
-    let mut parts: Vec<ConvexPart> = members
+    let mut parts: Vec<(ConvexPart, bool)> = members
         .into_iter()
         .enumerate()
         .filter(|(root, fs)| fs.len() >= MIN_PART_FACES && !non_manifold[*root])
@@ -475,33 +488,7 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
             if work > PART_WORK_LIMIT {
                 return None;
             }
-            // Per face: which side the part lies on (its vertices' mean says, when clear of
-            // the plane), then that no vertex lies beyond the plane on the other, by the
-            // tree of boxes; in parallel.
-            let points = super::mesh::Points::new(&vertices);
-            let tree = super::mesh::PointTree::new(&vertices);
             let mean = vertices.iter().sum::<glam::DVec3>() / vertices.len() as f64;
-            // well over the rounding of a height (~1e-16 of the coordinates)
-            let slack = 1e-4 * tol;
-            let hull_ahead: Vec<bool> = fs
-                .par_iter()
-                .map(|&f| {
-                    let face = &faces.faces[f as usize];
-                    let (n, c) = (face.normal, face.centroid);
-                    let h = n.dot(mean - c);
-                    // the mean's height is the vertices' mean height, to rounding far
-                    // below the tolerance: beyond twice it, some vertex is beyond it
-                    let (ahead, behind) = if h < -2.0 * tol {
-                        (tree.any_beyond(n, c, tol, slack), true)
-                    } else if h > 2.0 * tol {
-                        (true, tree.any_beyond(-n, c, tol, slack))
-                    } else {
-                        points.sides(n, c, tol)
-                    };
-                    // on its hull's boundary unless vertices lie on both sides
-                    (!(ahead && behind)).then_some(ahead)
-                })
-                .collect::<Option<_>>()?;
             let mut lid = None;
             if let Some(open) = Some(&open[root]).filter(|o| !o.is_empty()) {
                 // the open side must be flat: Newell's normal of its edges, then distances
@@ -519,19 +506,232 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
                 if !flat {
                     return None;
                 }
-                let centroid = vertices.iter().sum::<glam::DVec3>() / vertices.len() as f64;
-                lid = lid_of(open, mesh, centroid - p, n.normalize(), tol);
+                lid = lid_of(open, mesh, mean - p, n.normalize(), tol);
             }
-            Some(ConvexPart {
+            // Per face: which side the part lies on, and that no vertex lies beyond its
+            // plane on the other: from a cap's edges when it has a lid, else vertex by
+            // vertex.
+            let cap = lid.as_ref().filter(|_| by_edges).and_then(|lid| {
+                let cap = Cap {
+                    mesh,
+                    welded: &welded,
+                    faces,
+                    part: &fs,
+                    ids: &ids,
+                    vertices: &vertices,
+                    open: &open[root],
+                    inner: &inner[root],
+                };
+                cap.sides(lid, tol)
+            });
+            let proven = cap.is_some();
+            let hull_ahead = match cap {
+                Some(sides) => sides,
+                None => tree_sides(faces, &fs, &vertices, mean, tol)?,
+            };
+            let part = ConvexPart {
                 vertices,
                 faces: fs,
                 hull_ahead,
                 lid,
-            })
+            };
+            Some((part, proven))
         })
         .collect();
-    parts.sort_by_key(|p| p.faces[0]);
+    parts.sort_by_key(|(p, _)| p.faces[0]);
     parts
+}
+
+/// Per face of a part (`part`, with distinct `vertices` and their `mean`, m): whether the
+/// part lies ahead of it, by testing the vertices against its plane (within `tol`, m), in
+/// parallel; `None` when some face has vertices beyond it on both sides.
+fn tree_sides(
+    faces: &Faces,
+    part: &[u32],
+    vertices: &[glam::DVec3],
+    mean: glam::DVec3,
+    tol: f64,
+) -> Option<Vec<bool>> {
+    let points = super::mesh::Points::new(vertices);
+    let tree = super::mesh::PointTree::new(vertices);
+    // well over the rounding of a height (~1e-16 of the coordinates)
+    let slack = 1e-4 * tol;
+    part.par_iter()
+        .map(|&f| {
+            let face = &faces.faces[f as usize];
+            let (n, c) = (face.normal, face.centroid);
+            let h = n.dot(mean - c);
+            // the mean's height is the vertices' mean height, to rounding far below the
+            // tolerance: beyond twice it, some vertex is beyond it
+            let (ahead, behind) = if h < -2.0 * tol {
+                (tree.any_beyond(n, c, tol, slack), true)
+            } else if h > 2.0 * tol {
+                (true, tree.any_beyond(-n, c, tol, slack))
+            } else {
+                points.sides(n, c, tol)
+            };
+            // on its hull's boundary unless vertices lie on both sides
+            (!(ahead && behind)).then_some(ahead)
+        })
+        .collect()
+}
+
+/// A cap's triangles and edges, for proving it convex from its edges alone.
+struct Cap<'a> {
+    mesh: &'a Mesh,
+    /// Per mesh vertex: its welded id.
+    welded: &'a [u32],
+    faces: &'a Faces,
+    /// The cap's faces.
+    part: &'a [u32],
+    /// The cap's welded vertex ids, sorted, and their positions (m).
+    ids: &'a [u32],
+    vertices: &'a [glam::DVec3],
+    /// Its open edges (welded ids) and inner edges (the two triangles sharing each).
+    open: &'a [(u32, u32)],
+    inner: &'a [(u32, u32)],
+}
+
+/// Least cosine between a cap's triangles and its lid's axis for the local proof: a
+/// triangle closer to edge-on projects too thin for the error bound to be useful.
+const MIN_CAP_COS: f64 = 1e-6;
+
+impl Cap<'_> {
+    /// Per face, whether the cap lies ahead of it (its vertices all on that side of the
+    /// face's plane, within `tol`, m), proven from the cap's edges; `None` when the proof
+    /// does not apply (the caller then tests every face against the vertices).
+    ///
+    /// Linear time, where a tree query per face costs a pass near its plane: the cap is a
+    /// disk (V − E + F = 1, one boundary loop: the lid's, convex and simple); every
+    /// triangle projects onto the lid's plane with one orientation, and the projected
+    /// angles about each inner vertex add up to one turn, so the projection is a local
+    /// homeomorphism that takes the boundary once round the lid: by the degree argument it
+    /// is one-to-one, and the cap is the graph of a piecewise-linear function over a
+    /// convex polygon. Every inner edge bends one way, so that function is convex (or
+    /// concave) and every triangle's plane supports it. Kinks the wrong way (rounding, or
+    /// faces merged within the merge tolerance) are allowed while the bound they put on
+    /// any vertex's distance beyond a face's plane stays within `tol`.
+    fn sides(&self, lid: &Lid, tol: f64) -> Option<Vec<bool>> {
+        let (vertices, n) = (self.vertices, self.vertices.len());
+        let triangles: Vec<u32> = self
+            .part
+            .iter()
+            .flat_map(|&f| self.faces.faces[f as usize].triangles.iter().copied())
+            .collect();
+        if n + triangles.len() != self.inner.len() + self.open.len() + 1 {
+            return None; // not a disk (V − E + F = 1)
+        }
+        let mut local = vec![u32::MAX; self.mesh.vertices.len()];
+        for (i, &v) in self.ids.iter().enumerate() {
+            local[v as usize] = i as u32;
+        }
+        let corners = |t: u32| {
+            self.mesh.triangles[t as usize]
+                .map(|v| local[self.welded[v as usize] as usize] as usize)
+        };
+        let flat = |p: glam::DVec3| glam::DVec2::new(p.dot(lid.u), p.dot(lid.w));
+        // one orientation in projection, and the projected angles about each vertex
+        let mut sign = 0.0;
+        let mut turn = vec![0.0; n];
+        for &t in &triangles {
+            let c = corners(t);
+            let p = c.map(|i| vertices[i]);
+            let area = (p[1] - p[0]).cross(p[2] - p[0]);
+            let cos = area.dot(lid.normal) / area.length();
+            // (a NaN cosine, of a degenerate triangle, fails too)
+            if cos.abs().is_nan()
+                || cos.abs() < MIN_CAP_COS
+                || (sign != 0.0 && cos.signum() != sign)
+            {
+                return None;
+            }
+            sign = cos.signum();
+            let q = p.map(flat);
+            for k in 0..3 {
+                let (e1, e2) = (q[(k + 1) % 3] - q[k], q[(k + 2) % 3] - q[k]);
+                turn[c[k]] += (sign * e1.perp_dot(e2)).atan2(e1.dot(e2));
+            }
+        }
+        let mut rim = vec![false; n];
+        for &(a, b) in self.open {
+            rim[local[a as usize] as usize] = true;
+            rim[local[b as usize] as usize] = true;
+        }
+        // the angle sums are whole turns: once round, not twice
+        let once_round = |t: f64| (t - std::f64::consts::TAU).abs() <= 0.5;
+        if (0..n).any(|i| !rim[i] && !once_round(turn[i])) {
+            return None;
+        }
+        // Every inner edge bends one way. A kink the wrong way (by rounding, on a face
+        // merged from triangles) of normal height h, over a far corner at projected
+        // distance d from the edge, turns the function's slope by h/(cos·d); a straight
+        // path over the projection crosses each edge at most once, so over the cap's width
+        // 2r the kinks misplace a vertex by at most 2r·Σ h/(cos·d) against any triangle's
+        // plane.
+        let (mut ahead_sum, mut behind_sum) = (0.0, 0.0);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &(s, t) in self.inner {
+            let (a, b) = (corners(s), corners(t));
+            let far = |x: &[usize; 3], y: &[usize; 3]| {
+                let mut far = x.iter().filter(|v| !y.contains(v));
+                match (far.next(), far.next()) {
+                    (Some(&v), None) => Some(v),
+                    _ => None,
+                }
+            };
+            let (fa, fb) = (far(&a, &b)?, far(&b, &a)?);
+            // b's far corner against a's plane
+            let p = a.map(|i| vertices[i]);
+            let area = (p[1] - p[0]).cross(p[2] - p[0]);
+            let normal = area / area.length();
+            let h = normal.dot(vertices[fb] - p[0]);
+            let cos = normal.dot(lid.normal).abs();
+            let edge: Vec<glam::DVec2> = a
+                .iter()
+                .filter(|&&v| v != fa)
+                .map(|&v| flat(vertices[v]))
+                .collect();
+            let along = edge[1] - edge[0];
+            let d = along.perp_dot(flat(vertices[fb]) - edge[0]).abs() / along.length();
+            lo = lo.min(h);
+            hi = hi.max(h);
+            let turn = h.abs() / (cos * d);
+            if h > 0.0 {
+                behind_sum += turn; // a wrong-way kink if the hull lies behind
+            } else {
+                ahead_sum += turn;
+            }
+        }
+        let slack = 1e-4 * tol;
+        let (ahead, turns) = if hi <= slack {
+            (false, behind_sum)
+        } else if lo >= -slack {
+            (true, ahead_sum)
+        } else {
+            return None;
+        };
+        let (_, radius) = super::mesh::bounding_sphere(vertices);
+        let bound = 2.0 * radius * turns;
+        // A face's plane against its first triangle's: every vertex within `bound` of the
+        // triangle's plane on the hull's side is within this much more of the face's.
+        let mut sides = Vec::with_capacity(self.part.len());
+        for &f in self.part {
+            let face = &self.faces.faces[f as usize];
+            let p = corners(face.triangles[0]).map(|i| vertices[i]);
+            let area = (p[1] - p[0]).cross(p[2] - p[0]);
+            let tilt = (face.normal - area / area.length()).length();
+            let off = p
+                .iter()
+                .map(|q| face.normal.dot(*q - face.centroid).abs())
+                .fold(0.0, f64::max);
+            let beyond = bound + 2.0 * radius * tilt + off;
+            if beyond.is_nan() || beyond > tol {
+                return None; // a kinked merged face: leave it to the tree
+            }
+            sides.push(ahead);
+        }
+        Some(sides)
+    }
 }
 
 /// The lid of a cap whose open edges (directed, welded ids) lie in the plane of unit
@@ -836,6 +1036,61 @@ mod tests {
                 p.lid.is_none() && p.hull_ahead.iter().all(|&a| !a),
                 "boxes are closed"
             );
+        }
+    }
+
+    /// A part as its faces, their sides and its lid's corner count.
+    type PartSummary = (Vec<u32>, Vec<bool>, usize);
+
+    /// The parts, and which were proven from their edges.
+    fn summary(mesh: &Mesh, by_edges: bool) -> (Vec<PartSummary>, Vec<bool>) {
+        let faces = Faces::build(mesh, true);
+        let (_, scale) = mesh.bounding_sphere();
+        parts_of(mesh, &faces, 1e-9 * scale, by_edges)
+            .into_iter()
+            .map(|(p, proven)| {
+                let corners = p.lid.as_ref().map_or(0, |l| l.corners.len());
+                ((p.faces, p.hull_ahead, corners), proven)
+            })
+            .unzip()
+    }
+
+    #[test]
+    fn a_caps_edges_prove_what_testing_its_vertices_says() {
+        // the box-wing's dishes, coarse and fine (the fine one's quads are faces of two
+        // triangles, flat to rounding: kinks the wrong way within rounding)
+        for mesh in [builtin::box_wing(), builtin::box_wing_with(48, 128, 3)] {
+            let (by_edges, proven) = summary(&mesh, true);
+            let (by_vertices, _) = summary(&mesh, false);
+            assert_eq!(by_edges, by_vertices);
+            // the dish is proven from its edges; the closed boxes are not caps
+            let caps: Vec<bool> = by_edges.iter().map(|(_, _, c)| *c > 0).collect();
+            assert_eq!(proven, caps);
+            assert_eq!(caps.iter().filter(|&&c| c).count(), 1);
+        }
+    }
+
+    #[test]
+    fn a_dent_in_a_cap_is_found_from_its_edges_as_from_its_vertices() {
+        // Push one inner dish vertex out of the dish's hull (against its concave side)
+        // by multiples of the tolerance: beyond it the dish is no convex part; well
+        // within it, still one (vertex by vertex), though no longer proven from edges
+        // that now bend the wrong way by more than rounding.
+        let plain = builtin::box_wing_with(16, 48, 0);
+        let (_, scale) = plain.bounding_sphere();
+        let tol = 1e-9 * scale;
+        // the dish's vertices follow everything else: centre, then 48 per ring
+        let dish_start = plain.vertices.len() - (1 + 16 * 48);
+        for (ring, dents) in [(3, 1e3), (8, 10.0), (5, 0.1)] {
+            let mut mesh = plain.clone();
+            let v = dish_start + 1 + (ring - 1) * 48 + 7;
+            mesh.vertices[v].z -= dents * tol;
+            let (by_edges, proven) = summary(&mesh, true);
+            let (by_vertices, _) = summary(&mesh, false);
+            assert_eq!(by_edges, by_vertices, "dent of {dents} tol");
+            let dish_kept = by_edges.iter().any(|(_, _, c)| *c > 0);
+            assert_eq!(dish_kept, dents < 1.0, "dent of {dents} tol");
+            assert!(proven.iter().all(|p| !p), "dent of {dents} tol");
         }
     }
 

@@ -4,6 +4,7 @@
 use super::faces::Faces;
 use super::mesh::Mesh;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// Largest faces × vertices product checked exactly (all vertices behind every face).
 const EXACT_LIMIT: usize = 400_000_000;
@@ -412,24 +413,42 @@ pub fn convex_parts(mesh: &Mesh, faces: &Faces, tol: f64) -> Vec<ConvexPart> {
 /// [`convex_parts`], each with whether its convexity was proven from its edges
 /// ([`Cap::sides`]), which `by_edges = false` never tries.
 fn parts_of(mesh: &Mesh, faces: &Faces, tol: f64, by_edges: bool) -> Vec<(ConvexPart, bool)> {
-    let welded = mesh.welded_ids();
     let mut face_of = vec![0u32; mesh.triangles.len()];
     for (i, f) in faces.faces.iter().enumerate() {
         for &t in &f.triangles {
             face_of[t as usize] = i as u32;
         }
     }
-    // directed edges by their welded ends, sorted so that each edge's uses are side by
-    // side (a sort, not a hash map of lists: no allocation per edge): a shared edge joins
-    // two faces
-    let mut edges: Vec<((u32, u32), u32, bool, u32)> = Vec::with_capacity(3 * mesh.triangles.len());
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
-            edges.push(((a.min(b), a.max(b)), face_of[t], a < b, t as u32));
+    // the triangles' edges by their welded ends, sorted so that each edge's uses are side
+    // by side (a sort, not a hash map of lists: no allocation per edge), as merging faces
+    // left them; unmerged faces kept none
+    let (welded, sorted) = if faces.edges.is_empty() {
+        let welded = mesh.welded_ids();
+        let mut sorted = Vec::with_capacity(3 * mesh.triangles.len());
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
+                sorted.push((a.min(b), a.max(b), t as u32));
+            }
         }
-    }
-    edges.par_sort_unstable();
+        sorted.par_sort_unstable();
+        (Cow::Owned(welded), Cow::Owned(sorted))
+    } else {
+        (
+            Cow::Borrowed(&faces.welded[..]),
+            Cow::Borrowed(&faces.edges[..]),
+        )
+    };
+    // each use with its face and whether its triangle runs from the lower end: a shared
+    // edge joins two faces
+    let edges: Vec<((u32, u32), u32, bool, u32)> = sorted
+        .iter()
+        .map(|&(a, b, t)| {
+            let tri = mesh.triangles[t as usize].map(|v| welded[v as usize]);
+            let forward = a < b && (0..3).any(|k| tri[k] == a && tri[(k + 1) % 3] == b);
+            ((a, b), face_of[t as usize], forward, t)
+        })
+        .collect();
     let uses = || edges.chunk_by(|x, y| x.0 == y.0);
     let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
     fn root(p: &mut [u32], mut x: u32) -> u32 {

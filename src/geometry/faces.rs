@@ -32,6 +32,12 @@ pub struct Face {
 #[derive(Debug, Clone, Default)]
 pub struct Faces {
     pub faces: Vec<Face>,
+    /// When the faces were merged (else empty): each mesh vertex's welded id (the least
+    /// index at its position), and every triangle's edges by their welded ends, lower
+    /// first, with the triangle, sorted — what [`super::convex::convex_parts`] joins
+    /// faces by, kept rather than sorted again.
+    pub welded: Vec<u32>,
+    pub edges: Vec<(u32, u32, u32)>,
 }
 
 /// Cosine above which two unit normals count as the same plane's.
@@ -49,6 +55,7 @@ impl Faces {
             .map(|i| mesh.area_vector(i).normalize())
             .collect();
         let mut parent: Vec<u32> = (0..n as u32).collect();
+        let (mut welded, mut edge_list) = (Vec::new(), Vec::new());
         if merge {
             // Weld vertices by exact position so meshes with split vertices still merge.
             let canon = mesh.welded_ids();
@@ -79,6 +86,7 @@ impl Faces {
                     }
                 }
             }
+            (welded, edge_list) = (canon, edges);
         }
         // faces in the order of their first triangles (each root is its part's least)
         let mut index_of_root = vec![u32::MAX; n];
@@ -95,7 +103,11 @@ impl Faces {
             .into_par_iter()
             .map(|tris| Face::from_triangles(mesh, tris))
             .collect();
-        Faces { faces }
+        Faces {
+            faces,
+            welded,
+            edges: edge_list,
+        }
     }
 
     /// Reorders the faces along a Morton curve of their centroids, so that runs of

@@ -333,6 +333,19 @@ impl Lid {
     }
 }
 
+/// What the ray from a point does at the lid ([`LidView::test`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LidPoint {
+    /// It leaves through the lid (within the tolerance).
+    Passes,
+    /// It misses, beyond the line of the outline's edge with this index.
+    Beyond(u32),
+    /// It misses, though not beyond the line of the edge it leaves the outline by.
+    Blocked,
+    /// It passes, but only within the tolerance of the outline's boundary.
+    OnEdge,
+}
+
 /// A [`Lid`] seen along one direction d (pointing out through its plane): where a ray
 /// along d from a point meets the plane is an affine map of the point, two dot products.
 #[derive(Debug, Clone, Copy)]
@@ -370,6 +383,59 @@ impl LidView<'_> {
         let (a, b) = lid.edge(lid.sector(q));
         let e = b - a;
         e.perp_dot(q - a) >= -tol * e.length()
+    }
+
+    /// [`LidView::passes`], told apart: for a point that does not pass, the outline's edge
+    /// whose line it lies beyond by more than `tol` (m), when it does; for one that passes
+    /// only by the tolerance, the edge it lies on (a rim vertex of the cap itself). Points
+    /// all on or beyond one edge's line span no area that passes: the lid lies on the
+    /// line's other side.
+    pub fn test(&self, p: glam::DVec3, tol: f64) -> LidPoint {
+        let lid = self.lid;
+        let q = self.meet(p);
+        let r = q.distance(lid.centre);
+        if r <= lid.inner {
+            return LidPoint::Passes;
+        }
+        let j = lid.sector(q);
+        let (a, b) = lid.edge(j);
+        let e = b - a;
+        let side = e.perp_dot(q - a);
+        let margin = tol * e.length();
+        if side < -margin {
+            LidPoint::Beyond(j as u32)
+        } else if r > lid.outer + tol {
+            LidPoint::Blocked // outside, though not that far beyond the edge's line
+        } else if side <= margin {
+            LidPoint::OnEdge
+        } else {
+            LidPoint::Passes
+        }
+    }
+
+    /// Is `p`'s ray on or beyond (within `tol`, m) a line that the lid lies behind: that
+    /// of the outline's edge `j`, or with `corner`, the line through the corner after
+    /// edge `j` square to the mean of its two edges' normals?
+    pub fn on_or_beyond(&self, p: glam::DVec3, j: u32, corner: bool, tol: f64) -> bool {
+        let lid = self.lid;
+        let outward = |i: usize| {
+            let (a, b) = lid.edge(i);
+            let e = (b - a).normalize();
+            (glam::DVec2::new(e.y, -e.x), a, b)
+        };
+        let (n, a, b) = outward(j as usize);
+        let (normal, at) = if corner {
+            let (m, _, _) = outward((j as usize + 1) % lid.outline.len());
+            ((n + m).normalize(), b)
+        } else {
+            (n, a)
+        };
+        normal.dot(self.meet(p) - at) >= -tol
+    }
+
+    /// The outline's number of edges.
+    pub fn edges(&self) -> u32 {
+        self.lid.outline.len() as u32
     }
 
     /// [`LidView::passes`] for every point of the ball about `c` of radius `r` (m) at

@@ -10,7 +10,7 @@
 //! few hundred ball tests.
 
 use super::FaceGeom;
-use crate::geometry::convex::{ConvexPart, Lid, LidView};
+use crate::geometry::convex::{ConvexPart, Lid, LidPoint, LidView};
 use glam::DVec3;
 
 /// How a face on the inner side of a convex cap sees out through the cap's lid along a
@@ -58,10 +58,13 @@ struct Node {
     second: u32,
 }
 
-/// Per cap vertex, within one walk: not tested yet, or whether its ray passes the lid.
-const UNTESTED: u8 = 0;
-const PASSES: u8 = 1;
-const BLOCKED: u8 = 2;
+/// Per cap vertex, within one walk: not tested yet, whether its ray passes the lid, or
+/// misses it — beyond the line of one rim edge (the edge's index), or not.
+const UNTESTED: u32 = u32::MAX;
+const PASSES: u32 = u32::MAX - 1;
+const BLOCKED: u32 = u32::MAX - 2;
+/// Passes only by the tolerance, on the rim ([`LidPoint::OnEdge`]).
+const ON_EDGE: u32 = u32::MAX - 3;
 
 impl CapTree {
     /// The tree over `part`'s faces; each face's vertices must be among the part's.
@@ -147,7 +150,7 @@ impl CapTree {
         d: DVec3,
         tol: f64,
         states: &mut Vec<LidState>,
-        tested: &mut Vec<u8>,
+        tested: &mut Vec<u32>,
     ) {
         states.clear();
         let Some(view) = lid.along(d) else {
@@ -163,7 +166,14 @@ impl CapTree {
         }
     }
 
-    fn walk(&self, at: usize, lid: &LidView, tol: f64, states: &mut [LidState], tested: &mut [u8]) {
+    fn walk(
+        &self,
+        at: usize,
+        lid: &LidView,
+        tol: f64,
+        states: &mut [LidState],
+        tested: &mut [u32],
+    ) {
         let node = &self.nodes[at];
         let range = node.start as usize..node.end as usize;
         // A ball the lid decides decides every face in it: their balls lie inside it.
@@ -187,9 +197,13 @@ impl CapTree {
     }
 
     /// The lid's verdict on the face at `i` in tree order: its ball, else its vertices
-    /// (each tested once per walk: neighbours share them). A face whose every vertex
-    /// passes is open: its projection onto the lid's plane is convex, as the lid is.
-    fn face_state(&self, i: usize, lid: &LidView, tol: f64, tested: &mut [u8]) -> LidState {
+    /// (each tested once per walk: neighbours share them). The face's projection onto the
+    /// lid's plane lies in the convex hull of its vertices' projections: open when every
+    /// vertex passes (the lid is convex), closed when every vertex lies on or beyond one
+    /// line the lid lies behind — a rim edge's, or at a rim corner, the line square to its
+    /// two edges' mean normal (three in four of the faces the ball test leaves, on the
+    /// dark side of the rim's shadow, which the lid's clip would give no area).
+    fn face_state(&self, i: usize, lid: &LidView, tol: f64, tested: &mut [u32]) -> LidState {
         let (c, r) = self.balls[i];
         match lid.classify(c, r, tol) {
             Some(true) => return LidState::Open,
@@ -198,20 +212,66 @@ impl CapTree {
         }
         let corners =
             &self.corners[self.corner_start[i] as usize..self.corner_start[i + 1] as usize];
+        let (mut inside, mut blocked) = (false, false);
+        // the rim edges that corners lie beyond: at most two, side by side
+        let (mut first, mut second) = (None, None);
+        let mut spread = false;
         for &v in corners {
             let t = &mut tested[v as usize];
             if *t == UNTESTED {
-                *t = if lid.passes(self.points[v as usize], tol) {
-                    PASSES
-                } else {
-                    BLOCKED
+                *t = match lid.test(self.points[v as usize], tol) {
+                    LidPoint::Passes => PASSES,
+                    LidPoint::OnEdge => ON_EDGE,
+                    LidPoint::Beyond(j) => j,
+                    LidPoint::Blocked => BLOCKED,
                 };
             }
-            if *t == BLOCKED {
+            match *t {
+                PASSES => inside = true,
+                ON_EDGE => {}
+                BLOCKED => blocked = true,
+                j => match (first, second) {
+                    (None, _) => first = Some(j),
+                    (Some(a), _) if a == j => {}
+                    (Some(_), None) => second = Some(j),
+                    (Some(_), Some(b)) if b == j => {}
+                    _ => spread = true,
+                },
+            }
+            if inside && (first.is_some() || blocked) {
                 return LidState::Clip;
             }
         }
-        LidState::Open
+        let Some(a) = first else {
+            // every corner passes (some only by the tolerance), or some miss the lid
+            // without lying beyond an edge's line
+            return if blocked {
+                LidState::Clip
+            } else {
+                LidState::Open
+            };
+        };
+        if inside || blocked || spread {
+            return LidState::Clip;
+        }
+        // the line the corners must all lie on or beyond: an edge's, or a corner's
+        let n = lid.edges();
+        let line = match second {
+            None => Some((a, false)),
+            Some(b) if b == (a + 1) % n => Some((a, true)),
+            Some(b) if a == (b + 1) % n => Some((b, true)),
+            Some(_) => None,
+        };
+        match line {
+            Some((j, corner))
+                if corners
+                    .iter()
+                    .all(|&v| lid.on_or_beyond(self.points[v as usize], j, corner, tol)) =>
+            {
+                LidState::Closed
+            }
+            _ => LidState::Clip,
+        }
     }
 }
 
@@ -221,7 +281,7 @@ pub(super) struct CapStates {
     pub(super) dir: Option<DVec3>,
     pub(super) states: Vec<LidState>,
     /// Per cap vertex: [`CapTree::face_state`]'s memo.
-    tested: Vec<u8>,
+    tested: Vec<u32>,
 }
 
 impl CapStates {

@@ -340,8 +340,8 @@ pub enum LidPoint {
     Passes,
     /// It misses, beyond the line of the outline's edge with this index.
     Beyond(u32),
-    /// It misses, though not beyond the line of the edge it leaves the outline by.
-    Blocked,
+    /// It misses, beyond the circle about the outline.
+    Far,
     /// It passes, but only within the tolerance of the outline's boundary.
     OnEdge,
 }
@@ -385,17 +385,21 @@ impl LidView<'_> {
         e.perp_dot(q - a) >= -tol * e.length()
     }
 
-    /// [`LidView::passes`], told apart: for a point that does not pass, the outline's edge
-    /// whose line it lies beyond by more than `tol` (m), when it does; for one that passes
-    /// only by the tolerance, the edge it lies on (a rim vertex of the cap itself). Points
-    /// all on or beyond one edge's line span no area that passes: the lid lies on the
-    /// line's other side.
-    pub fn test(&self, p: glam::DVec3, tol: f64) -> LidPoint {
+    /// [`LidView::passes`] for the point whose ray meets the lid's plane at `q` (outline
+    /// coordinates, [`LidView::meet`]), told apart: for a point that does not pass, the
+    /// outline's edge whose line it lies beyond by more than `tol` (m), when it does; for
+    /// one that passes only by the tolerance, that it lies on the outline (a rim vertex of
+    /// the cap itself). Points all on or beyond one line that the lid lies behind span no
+    /// area that passes.
+    pub fn test(&self, q: glam::DVec2, tol: f64) -> LidPoint {
         let lid = self.lid;
-        let q = self.meet(p);
         let r = q.distance(lid.centre);
         if r <= lid.inner {
             return LidPoint::Passes;
+        }
+        if r > lid.outer + tol {
+            // outside: which edge's line it lies beyond is found when asked
+            return LidPoint::Far;
         }
         let j = lid.sector(q);
         let (a, b) = lid.edge(j);
@@ -404,8 +408,6 @@ impl LidView<'_> {
         let margin = tol * e.length();
         if side < -margin {
             LidPoint::Beyond(j as u32)
-        } else if r > lid.outer + tol {
-            LidPoint::Blocked // outside, though not that far beyond the edge's line
         } else if side <= margin {
             LidPoint::OnEdge
         } else {
@@ -413,10 +415,20 @@ impl LidView<'_> {
         }
     }
 
-    /// Is `p`'s ray on or beyond (within `tol`, m) a line that the lid lies behind: that
-    /// of the outline's edge `j`, or with `corner`, the line through the corner after
-    /// edge `j` square to the mean of its two edges' normals?
-    pub fn on_or_beyond(&self, p: glam::DVec3, j: u32, corner: bool, tol: f64) -> bool {
+    /// For a point [`LidView::test`] found [`LidPoint::Far`] (meeting the plane at `q`):
+    /// the edge whose line it lies beyond by more than `tol` (m), `None` when not by that
+    /// much.
+    pub fn beyond(&self, q: glam::DVec2, tol: f64) -> Option<u32> {
+        let j = self.lid.sector(q);
+        let (a, b) = self.lid.edge(j);
+        let e = b - a;
+        (e.perp_dot(q - a) < -tol * e.length()).then_some(j as u32)
+    }
+
+    /// A line the lid lies behind, as its unit outward normal and a point on it (outline
+    /// coordinates, m): that of the outline's edge `j`, or with `corner`, the line through
+    /// the corner after edge `j` square to the mean of its two edges' normals.
+    pub fn support(&self, j: u32, corner: bool) -> (glam::DVec2, glam::DVec2) {
         let lid = self.lid;
         let outward = |i: usize| {
             let (a, b) = lid.edge(i);
@@ -424,13 +436,12 @@ impl LidView<'_> {
             (glam::DVec2::new(e.y, -e.x), a, b)
         };
         let (n, a, b) = outward(j as usize);
-        let (normal, at) = if corner {
+        if corner {
             let (m, _, _) = outward((j as usize + 1) % lid.outline.len());
             ((n + m).normalize(), b)
         } else {
             (n, a)
-        };
-        normal.dot(self.meet(p) - at) >= -tol
+        }
     }
 
     /// The outline's number of edges.

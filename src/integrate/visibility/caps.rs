@@ -11,7 +11,7 @@
 
 use super::FaceGeom;
 use crate::geometry::convex::{ConvexPart, Lid, LidPoint, LidView};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 /// How a face on the inner side of a convex cap sees out through the cap's lid along a
 /// direction (always `Open` for other faces).
@@ -59,12 +59,14 @@ struct Node {
 }
 
 /// Per cap vertex, within one walk: not tested yet, whether its ray passes the lid, or
-/// misses it — beyond the line of one rim edge (the edge's index), or not.
+/// misses it — beyond the line of one rim edge (the edge's index), or not by the
+/// tolerance (`BLOCKED`), or far outside, its edge not looked for yet (`FAR`).
 const UNTESTED: u32 = u32::MAX;
 const PASSES: u32 = u32::MAX - 1;
 const BLOCKED: u32 = u32::MAX - 2;
 /// Passes only by the tolerance, on the rim ([`LidPoint::OnEdge`]).
 const ON_EDGE: u32 = u32::MAX - 3;
+const FAR: u32 = u32::MAX - 4;
 
 impl CapTree {
     /// The tree over `part`'s faces; each face's vertices must be among the part's.
@@ -150,7 +152,7 @@ impl CapTree {
         d: DVec3,
         tol: f64,
         states: &mut Vec<LidState>,
-        tested: &mut Vec<u32>,
+        tested: &mut Vec<(u32, DVec2)>,
     ) {
         states.clear();
         let Some(view) = lid.along(d) else {
@@ -160,7 +162,7 @@ impl CapTree {
         };
         states.resize(self.order.len(), LidState::Clip);
         tested.clear();
-        tested.resize(self.points.len(), UNTESTED);
+        tested.resize(self.points.len(), (UNTESTED, DVec2::ZERO));
         if !self.nodes.is_empty() {
             self.walk(0, &view, tol, states, tested);
         }
@@ -172,7 +174,7 @@ impl CapTree {
         lid: &LidView,
         tol: f64,
         states: &mut [LidState],
-        tested: &mut [u32],
+        tested: &mut [(u32, DVec2)],
     ) {
         let node = &self.nodes[at];
         let range = node.start as usize..node.end as usize;
@@ -203,7 +205,13 @@ impl CapTree {
     /// line the lid lies behind — a rim edge's, or at a rim corner, the line square to its
     /// two edges' mean normal (three in four of the faces the ball test leaves, on the
     /// dark side of the rim's shadow, which the lid's clip would give no area).
-    fn face_state(&self, i: usize, lid: &LidView, tol: f64, tested: &mut [u32]) -> LidState {
+    fn face_state(
+        &self,
+        i: usize,
+        lid: &LidView,
+        tol: f64,
+        tested: &mut [(u32, DVec2)],
+    ) -> LidState {
         let (c, r) = self.balls[i];
         match lid.classify(c, r, tol) {
             Some(true) => return LidState::Open,
@@ -213,23 +221,43 @@ impl CapTree {
         let corners =
             &self.corners[self.corner_start[i] as usize..self.corner_start[i + 1] as usize];
         let (mut inside, mut blocked) = (false, false);
-        // the rim edges that corners lie beyond: at most two, side by side
-        let (mut first, mut second) = (None, None);
-        let mut spread = false;
         for &v in corners {
-            let t = &mut tested[v as usize];
+            let (t, q) = &mut tested[v as usize];
             if *t == UNTESTED {
-                *t = match lid.test(self.points[v as usize], tol) {
+                *q = lid.meet(self.points[v as usize]);
+                *t = match lid.test(*q, tol) {
                     LidPoint::Passes => PASSES,
                     LidPoint::OnEdge => ON_EDGE,
                     LidPoint::Beyond(j) => j,
-                    LidPoint::Blocked => BLOCKED,
+                    LidPoint::Far => FAR,
                 };
             }
             match *t {
                 PASSES => inside = true,
                 ON_EDGE => {}
-                BLOCKED => blocked = true,
+                _ => blocked = true,
+            }
+            if inside && blocked {
+                return LidState::Clip;
+            }
+        }
+        if !blocked {
+            return LidState::Open; // every corner passes (some only by the tolerance)
+        }
+        if inside {
+            return LidState::Clip;
+        }
+        // None passes: the rim edges that corners lie beyond, at most two side by side
+        let (mut first, mut second) = (None, None);
+        let mut spread = false;
+        for &v in corners {
+            let (t, q) = &mut tested[v as usize];
+            if *t == FAR {
+                *t = lid.beyond(*q, tol).unwrap_or(BLOCKED);
+            }
+            match *t {
+                ON_EDGE => {}
+                BLOCKED => spread = true,
                 j => match (first, second) {
                     (None, _) => first = Some(j),
                     (Some(a), _) if a == j => {}
@@ -238,22 +266,10 @@ impl CapTree {
                     _ => spread = true,
                 },
             }
-            if inside && (first.is_some() || blocked) {
-                return LidState::Clip;
-            }
         }
-        let Some(a) = first else {
-            // every corner passes (some only by the tolerance), or some miss the lid
-            // without lying beyond an edge's line
-            return if blocked {
-                LidState::Clip
-            } else {
-                LidState::Open
-            };
-        };
-        if inside || blocked || spread {
+        let Some(a) = first.filter(|_| !spread) else {
             return LidState::Clip;
-        }
+        };
         // the line the corners must all lie on or beyond: an edge's, or a corner's
         let n = lid.edges();
         let line = match second {
@@ -262,15 +278,17 @@ impl CapTree {
             Some(b) if a == (b + 1) % n => Some((b, true)),
             Some(_) => None,
         };
-        match line {
-            Some((j, corner))
-                if corners
-                    .iter()
-                    .all(|&v| lid.on_or_beyond(self.points[v as usize], j, corner, tol)) =>
-            {
-                LidState::Closed
-            }
-            _ => LidState::Clip,
+        let Some((j, corner)) = line else {
+            return LidState::Clip;
+        };
+        let (normal, at) = lid.support(j, corner);
+        if corners
+            .iter()
+            .all(|&v| normal.dot(tested[v as usize].1 - at) >= -tol)
+        {
+            LidState::Closed
+        } else {
+            LidState::Clip
         }
     }
 }
@@ -280,8 +298,9 @@ impl CapTree {
 pub(super) struct CapStates {
     pub(super) dir: Option<DVec3>,
     pub(super) states: Vec<LidState>,
-    /// Per cap vertex: [`CapTree::face_state`]'s memo.
-    tested: Vec<u32>,
+    /// Per cap vertex: [`CapTree::face_state`]'s memo, and where its ray meets the lid's
+    /// plane (outline coordinates, m).
+    tested: Vec<(u32, DVec2)>,
 }
 
 impl CapStates {

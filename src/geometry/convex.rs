@@ -550,7 +550,7 @@ fn parts_of(mesh: &Mesh, faces: &Faces, tol: f64, by_edges: bool) -> Vec<(Convex
     // other way round (edges inside a merged face cancel like any other), in the
     // direction its triangle runs; sorted, so the lid's corners start from the first
     let mut open: Vec<Vec<(u32, u32)>> = vec![Vec::new(); faces.len()];
-    // and its inner edges: the two triangles that share each (for `cap_sides`)
+    // and its inner edges: the two triangles that share each (for `Cap::sides`)
     let mut inner: Vec<Vec<(u32, u32)>> = vec![Vec::new(); faces.len()];
     let mut non_manifold = vec![false; faces.len()];
     for adj in uses() {

@@ -369,20 +369,21 @@ impl LidView<'_> {
     /// Does the ray from `p` leave through the lid (within `tol`, m)? `p` must lie on the
     /// hull's side of the lid's plane.
     pub fn passes(&self, p: glam::DVec3, tol: f64) -> bool {
-        let lid = self.lid;
-        let q = self.meet(p);
-        let r = q.distance(lid.centre);
-        if r <= lid.inner {
-            return true;
-        }
-        if r > lid.outer + tol {
-            return false;
-        }
-        // inside exactly when inside the edge that the ray from the centre through q
-        // leaves by (the outline is convex about the centre)
-        let (a, b) = lid.edge(lid.sector(q));
+        matches!(
+            self.test(self.meet(p), tol),
+            LidPoint::Passes | LidPoint::OnEdge
+        )
+    }
+
+    /// The edge (index) that the ray from the outline's centre through `q` leaves by, how
+    /// far inside its line `q` lies (twice the area it spans with the edge, m², negative
+    /// outside), and the tolerance `tol` (m) as a margin in those units.
+    #[inline]
+    fn edge_side(&self, q: glam::DVec2, tol: f64) -> (usize, f64, f64) {
+        let j = self.lid.sector(q);
+        let (a, b) = self.lid.edge(j);
         let e = b - a;
-        e.perp_dot(q - a) >= -tol * e.length()
+        (j, e.perp_dot(q - a), tol * e.length())
     }
 
     /// [`LidView::passes`] for the point whose ray meets the lid's plane at `q` (outline
@@ -401,11 +402,9 @@ impl LidView<'_> {
             // outside: which edge's line it lies beyond is found when asked
             return LidPoint::Far;
         }
-        let j = lid.sector(q);
-        let (a, b) = lid.edge(j);
-        let e = b - a;
-        let side = e.perp_dot(q - a);
-        let margin = tol * e.length();
+        // inside exactly when inside the edge that the ray from the centre through q
+        // leaves by (the outline is convex about the centre)
+        let (j, side, margin) = self.edge_side(q, tol);
         if side < -margin {
             LidPoint::Beyond(j as u32)
         } else if side <= margin {
@@ -419,10 +418,8 @@ impl LidView<'_> {
     /// the edge whose line it lies beyond by more than `tol` (m), `None` when not by that
     /// much.
     pub fn beyond(&self, q: glam::DVec2, tol: f64) -> Option<u32> {
-        let j = self.lid.sector(q);
-        let (a, b) = self.lid.edge(j);
-        let e = b - a;
-        (e.perp_dot(q - a) < -tol * e.length()).then_some(j as u32)
+        let (j, side, margin) = self.edge_side(q, tol);
+        (side < -margin).then_some(j as u32)
     }
 
     /// A line the lid lies behind, as its unit outward normal and a point on it (outline
@@ -500,15 +497,7 @@ fn parts_of(mesh: &Mesh, faces: &Faces, tol: f64, by_edges: bool) -> Vec<(Convex
     // by side (a sort, not a hash map of lists: no allocation per edge), as merging faces
     // left them; unmerged faces kept none
     let (welded, sorted) = if faces.edges.is_empty() {
-        let welded = mesh.welded_ids();
-        let mut sorted = Vec::with_capacity(3 * mesh.triangles.len());
-        for (t, tri) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
-                sorted.push((a.min(b), a.max(b), t as u32));
-            }
-        }
-        sorted.par_sort_unstable();
+        let (welded, sorted) = mesh.welded_edges();
         (Cow::Owned(welded), Cow::Owned(sorted))
     } else {
         (

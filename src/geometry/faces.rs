@@ -57,20 +57,9 @@ impl Faces {
         let mut parent: Vec<u32> = (0..n as u32).collect();
         let (mut welded, mut edge_list) = (Vec::new(), Vec::new());
         if merge {
-            // Weld vertices by exact position so meshes with split vertices still merge.
-            let canon = mesh.welded_ids();
-            // Every triangle's edges by their welded ends, sorted: the triangles sharing an
-            // edge are then side by side, the first of them first (a sort, not a hash map:
-            // no allocation per edge, and in parallel).
-            let mut edges: Vec<(u32, u32, u32)> = Vec::with_capacity(3 * n);
-            for (t, tri) in mesh.triangles.iter().enumerate() {
-                for k in 0..3 {
-                    let a = canon[tri[k] as usize];
-                    let b = canon[tri[(k + 1) % 3] as usize];
-                    edges.push((a.min(b), a.max(b), t as u32));
-                }
-            }
-            edges.par_sort_unstable();
+            // Weld vertices by exact position so meshes with split vertices still merge;
+            // the triangles sharing an edge are side by side in `edges`.
+            let (canon, edges) = mesh.welded_edges();
             for shared in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
                 let o = shared[0].2 as usize;
                 for &(_, _, t) in &shared[1..] {

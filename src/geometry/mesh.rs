@@ -47,6 +47,23 @@ impl Mesh {
         ids
     }
 
+    /// The welded ids ([`Mesh::welded_ids`]) and every triangle's edges by their welded
+    /// ends, lower first, with the triangle, sorted: the triangles sharing an edge are then
+    /// side by side, the first of them first (a sort, not a hash map: no allocation per
+    /// edge, and in parallel).
+    pub fn welded_edges(&self) -> (Vec<u32>, Vec<(u32, u32, u32)>) {
+        let welded = self.welded_ids();
+        let mut edges = Vec::with_capacity(3 * self.triangles.len());
+        for (t, tri) in self.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
+                edges.push((a.min(b), a.max(b), t as u32));
+            }
+        }
+        edges.par_sort_unstable();
+        (welded, edges)
+    }
+
     /// Twice-area vector (b−a)×(c−a) of triangle `i`: its direction is the outward normal.
     #[inline]
     pub fn area_vector(&self, i: usize) -> DVec3 {

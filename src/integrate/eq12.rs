@@ -19,6 +19,7 @@ pub struct Scratch {
     lit: Vec<LitFace>,
     visibility: super::visibility::Cache,
     image: super::image::ImageScratch,
+    silhouettes: super::silhouettes::Scratch,
 }
 
 /// What lights faces of one material at this epoch, from the Sun and each earthshine
@@ -133,7 +134,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     };
     // Without rays or pixels every face is seen and lit whole: summed here too, in the
     // order pass 2 would, with no list between the passes.
-    let whole = p.visibility.is_none() && p.image.is_none();
+    let whole = p.visibility.is_none() && p.image.is_none() && p.silhouettes.is_none();
     let mut decided = Sums::default();
     for (i, face) in p.faces.faces.iter().enumerate() {
         let light = &lights[face.material as usize];
@@ -206,6 +207,14 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     // unshadowed signal; where shadows leave much less than that (a glint's tail on a
     // mostly shadowed face), the sweep is repeated against the signal it found, so the
     // tolerance stays relative to what the observer actually receives.
+    let mut exact_rays = 0u64;
+    if let Some(sil) = &p.silhouettes {
+        let s = &mut scratch.silhouettes;
+        sil.prepare(s, 0, Some(v));
+        sil.prepare(s, 1, (es > 0.0).then_some(l));
+        sil.prepare(s, 2, earthshine.shadow_dir);
+        exact_rays += sil.take_rays(s);
+    }
     let mut reference = unshadowed;
     for sweep in 0..2 {
         let rays_before = rays;
@@ -216,6 +225,18 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                 _ if p.image.is_some() => {
                     let (f_sun, f_earth) = scratch.image.fractions(lf.face as usize, lf.area);
                     (f_sun * lf.area, f_earth * lf.area)
+                }
+                None if p.silhouettes.is_some() => {
+                    let sil = p.silhouettes.as_ref().expect("checked");
+                    let (a_sun, a_earth, n) = sil.areas(
+                        &mut scratch.silhouettes,
+                        lf.face as usize,
+                        lf.area,
+                        lf.sun > 0.0,
+                        lf.earth > 0.0,
+                    );
+                    exact_rays += n;
+                    (a_sun, a_earth)
                 }
                 // without rays or pixels pass 1 summed every face (`whole`)
                 None => unreachable!("no face is listed for pass 2 without visibility"),
@@ -255,6 +276,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         reference = found;
     }
 
+    rays += exact_rays;
     let r2 = range * range;
     let Sums {
         sun: sun_sum,

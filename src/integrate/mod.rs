@@ -9,6 +9,7 @@
 pub mod eq12;
 pub mod image;
 pub mod methods;
+pub mod silhouettes;
 pub mod visibility;
 
 use crate::geometry::{convex, Faces};
@@ -63,6 +64,8 @@ pub struct Prepared<'a> {
     pub visibility: Option<Visibility>,
     /// The `image` method's pixel sampler (replaces `visibility` when present).
     pub image: Option<self::image::ImageView>,
+    /// The silhouette method's mesh structure (replaces `visibility` when present).
+    pub silhouettes: Option<silhouettes::Silhouettes>,
     /// Band solar irradiance at 1 AU, W/m² (the magnitude zero point).
     pub sun_band_1au: f64,
     /// What was chosen and why, for `summary.method`.
@@ -90,7 +93,17 @@ impl<'a> Prepared<'a> {
                 None,
                 "auto → convex: the mesh is convex, so no face can shadow or hide another; no rays".to_string(),
             ),
-            Method::Auto | Method::Adaptive => (
+            Method::Auto | Method::Silhouette => (
+                None,
+                format!(
+                    "{}silhouette: {} faces from {} triangles; per direction, faces no shadow edge crosses \
+                     decided by one ray per connected group, crossed faces cut exactly along the shadow lines",
+                    if scene.method == Method::Auto { "auto → " } else { "" },
+                    faces.len(),
+                    scene.mesh.triangles.len(),
+                ),
+            ),
+            Method::Adaptive => (
                 Some(Visibility::build(scene, &faces, VisibilityMode::Adaptive)),
                 format!(
                     "{}adaptive: {} faces from {} triangles; faces an occluder may touch {}",
@@ -118,6 +131,9 @@ impl<'a> Prepared<'a> {
         };
         let image =
             (scene.method == Method::Image).then(|| self::image::ImageView::build(scene, &faces));
+        let silhouettes = (matches!(scene.method, Method::Silhouette)
+            || (scene.method == Method::Auto && !convex))
+            .then(|| silhouettes::Silhouettes::build(scene, &faces));
         let ill = &scene.illumination;
         let method = format!("{method}; {}", light_model_note(scene));
         Prepared {
@@ -126,6 +142,7 @@ impl<'a> Prepared<'a> {
             convex,
             visibility,
             image,
+            silhouettes,
             sun_band_1au: sun::band_irradiance_1au(ill.band_um, ill.sun_temperature_k),
             method,
         }

@@ -74,8 +74,12 @@ impl Default for Illumination {
 /// How visibility (shadowing and occlusion by the mesh itself) is integrated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
-    /// Convex meshes: no rays; otherwise `Adaptive`.
+    /// Convex meshes: no rays; otherwise `Silhouette`.
     Auto,
+    /// Faces decided from the shadows of the mesh's silhouette edges: groups of faces no
+    /// shadow crosses by one ray each, crossed faces cut into cells along the shadow lines
+    /// (exact, for any mesh).
+    Silhouette,
     /// Per-face classification; partly shadowed faces clipped exactly (ray-sampled to the
     /// tolerance where shadows cut a face too finely).
     Adaptive,
@@ -93,6 +97,7 @@ impl Method {
         match self {
             Method::Auto => "auto",
             Method::Adaptive => "adaptive",
+            Method::Silhouette => "silhouette",
             Method::Centroid => "centroid",
             Method::Convex => "convex",
             Method::Image => "image",

@@ -24,7 +24,7 @@ pub struct Request {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(example = 1e-3)]
     pub tolerance: Option<f64>,
-    /// Integration method: `auto` (default), `adaptive`, `centroid`, `convex` or `image`.
+    /// Integration method: `auto` (default), `silhouette`, `adaptive`, `centroid`, `convex` or `image`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub method: Option<String>,
     /// `image` method only: pixels on a side of the orthographic view from the observer

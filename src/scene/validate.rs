@@ -231,6 +231,7 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
     let method = match req.method.as_deref() {
         None | Some("auto") => Method::Auto,
         Some("adaptive") => Method::Adaptive,
+        Some("silhouette") => Method::Silhouette,
         Some("centroid") => Method::Centroid,
         Some("convex") => Method::Convex,
         Some("image") => Method::Image,

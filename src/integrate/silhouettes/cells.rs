@@ -1,0 +1,141 @@
+//! A face cut into convex cells by lines: where every shadow or occlusion edge that can
+//! cross a face lies on one of the lines, each cell is wholly lit or wholly dark along
+//! every direction, and one ray from its centroid decides it.
+
+use glam::DVec2;
+
+/// Convex cells in one flat buffer: `spans[i]` is cell i's range of `points`.
+#[derive(Default)]
+pub struct Cells {
+    pub points: Vec<DVec2>,
+    pub spans: Vec<(u32, u32)>,
+    next_points: Vec<DVec2>,
+    next_spans: Vec<(u32, u32)>,
+}
+
+impl Cells {
+    pub fn clear(&mut self) {
+        self.points.clear();
+        self.spans.clear();
+    }
+
+    /// Adds a convex polygon (counter-clockwise or clockwise).
+    pub fn push(&mut self, poly: impl IntoIterator<Item = DVec2>) {
+        let s = self.points.len() as u32;
+        self.points.extend(poly);
+        self.spans.push((s, self.points.len() as u32));
+    }
+
+    pub fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    pub fn cell(&self, i: usize) -> &[DVec2] {
+        let (a, b) = self.spans[i];
+        &self.points[a as usize..b as usize]
+    }
+
+    /// Splits every cell that the line through `p` along `dir` crosses by more than
+    /// `tol` (m) on both sides. Returns false (and leaves the cells as they were split so
+    /// far) once there would be more than `max` cells.
+    pub fn split(&mut self, p: DVec2, dir: DVec2, tol: f64, max: usize) -> bool {
+        let len = dir.length();
+        if len == 0.0 {
+            return true;
+        }
+        let dir = dir / len;
+        self.next_points.clear();
+        self.next_spans.clear();
+        for i in 0..self.spans.len() {
+            let (a, b) = self.spans[i];
+            let poly = &self.points[a as usize..b as usize];
+            let side = |q: DVec2| dir.perp_dot(q - p);
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &q in poly {
+                let s = side(q);
+                lo = lo.min(s);
+                hi = hi.max(s);
+            }
+            if lo >= -tol || hi <= tol {
+                let s = self.next_points.len() as u32;
+                self.next_points.extend_from_slice(poly);
+                self.next_spans.push((s, self.next_points.len() as u32));
+                continue;
+            }
+            for keep_left in [true, false] {
+                let s = self.next_points.len() as u32;
+                let n = poly.len();
+                for k in 0..n {
+                    let (q0, q1) = (poly[k], poly[(k + 1) % n]);
+                    let (s0, s1) = (side(q0), side(q1));
+                    let in0 = if keep_left { s0 >= 0.0 } else { s0 <= 0.0 };
+                    let in1 = if keep_left { s1 >= 0.0 } else { s1 <= 0.0 };
+                    if in0 {
+                        self.next_points.push(q0);
+                    }
+                    if (s0 > 0.0 && s1 < 0.0) || (s0 < 0.0 && s1 > 0.0) {
+                        self.next_points.push(q0 + (q1 - q0) * (s0 / (s0 - s1)));
+                    }
+                    let _ = in1;
+                }
+                let e = self.next_points.len() as u32;
+                if e - s >= 3 {
+                    self.next_spans.push((s, e));
+                } else {
+                    self.next_points.truncate(s as usize);
+                }
+            }
+            if self.next_spans.len() > max {
+                std::mem::swap(&mut self.points, &mut self.next_points);
+                std::mem::swap(&mut self.spans, &mut self.next_spans);
+                return false;
+            }
+        }
+        std::mem::swap(&mut self.points, &mut self.next_points);
+        std::mem::swap(&mut self.spans, &mut self.next_spans);
+        true
+    }
+}
+
+/// Area (m², unsigned) and centroid of a convex polygon.
+pub fn area_centroid(poly: &[DVec2]) -> (f64, DVec2) {
+    let o = poly[0];
+    let (mut a2, mut c) = (0.0, DVec2::ZERO);
+    for k in 1..poly.len() - 1 {
+        let (p, q) = (poly[k] - o, poly[k + 1] - o);
+        let t = p.perp_dot(q);
+        a2 += t;
+        c += (p + q) * t;
+    }
+    if a2 == 0.0 {
+        return (0.0, o);
+    }
+    (0.5 * a2.abs(), o + c / (3.0 * a2))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_crossing_lines_cut_a_square_into_four_quarters() {
+        let mut c = Cells::default();
+        c.push([DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y]);
+        assert!(c.split(DVec2::splat(0.5), DVec2::X, 1e-12, 64));
+        assert!(c.split(DVec2::splat(0.5), DVec2::Y, 1e-12, 64));
+        assert_eq!(c.len(), 4);
+        let mut total = 0.0;
+        for i in 0..4 {
+            let (a, centre) = area_centroid(c.cell(i));
+            assert!((a - 0.25).abs() < 1e-15);
+            assert!((centre - DVec2::splat(0.5)).abs().min_element() > 0.2);
+            total += a;
+        }
+        assert!((total - 1.0).abs() < 1e-15);
+        // a line along an edge cuts nothing
+        assert!(c.split(DVec2::ZERO, DVec2::X, 1e-12, 64));
+        assert_eq!(c.len(), 4);
+        // the cap on cells
+        assert!(!c.split(DVec2::new(0.3, 0.0), DVec2::new(1.0, 1.0), 1e-12, 4));
+    }
+}

@@ -1,0 +1,439 @@
+//! Which part of each face is lit and seen, from the mesh's silhouettes: exact, for any
+//! mesh, at a cost that follows the shadow and outline edges rather than the faces.
+//!
+//! Along a direction d (to the observer, the Sun or the Earth), whether a point of a face
+//! can see out changes only where
+//! - the shadow of a *silhouette* edge falls: an edge whose two triangles face opposite
+//!   ways along d, or an open surface's border (the outline of whatever lies in front,
+//!   seen along d, is made of these), or
+//! - another piece of the mesh meets the face's plane inside the face (a *contact*: a
+//!   boom's foot on the bus), fixed in the body frame ([`topology`]).
+//!
+//! So per epoch and direction ([`Direction::prepare`]):
+//! 1. the mesh is projected across d and binned ([`grid`]): a ray along d is a point
+//!    query there;
+//! 2. each silhouette edge marks the faces its shadow crosses (the grid's cells along its
+//!    projection, below it): these are the *edge* faces;
+//! 3. every other face is wholly clear or wholly dark along d, and so is every face
+//!    joined to it across edges that no shadow crosses: the faces are flooded in
+//!    connected groups and one ray decides each group;
+//! 4. an edge face ([`Silhouettes::areas`]) is cut by the lines of the shadows that cross
+//!    it (and its contacts) into convex cells ([`cells`]), each wholly clear or dark along
+//!    every direction: one ray from each cell's centroid decides it.
+//!
+//! Nothing is recognised by shape: a convex mesh has no shadow edges in front of any
+//! face and its faces form one group (one ray); a dish, a bell in a skirt or a crumpled
+//! fragment cost what their shadow lines cost. The areas are exact up to rounding (the
+//! tolerance does not enter), except on a face that so many shadows cross that its cells
+//! would exceed [`MAX_CELLS`]: that face is sampled on a fixed grid of points instead.
+
+mod cells;
+mod grid;
+mod topology;
+
+use crate::geometry::Faces;
+use crate::scene::Scene;
+use cells::{area_centroid, Cells};
+use glam::{DVec2, DVec3};
+use grid::{Grid, Triangles};
+use topology::{Topology, NONE};
+
+/// Most cells a face is cut into before it is sampled instead.
+const MAX_CELLS: usize = 256;
+/// Points per triangle side when a face is sampled (SAMPLES² per triangle).
+const SAMPLES: usize = 16;
+
+/// What is built once per request.
+pub struct Silhouettes {
+    vertices: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    tri_face: Vec<u32>,
+    /// Unit normal per triangle.
+    normals: Vec<DVec3>,
+    /// Per face: unit normal, a point of its plane, a basis of the plane, two-sidedness.
+    face_normal: Vec<DVec3>,
+    face_point: Vec<DVec3>,
+    face_basis: Vec<(DVec3, DVec3)>,
+    two_sided: Vec<bool>,
+    face_triangles: Vec<Vec<u32>>,
+    /// Per face: the convex polygons it is made of, in its plane's basis about
+    /// `face_point` (its outline when it is convex, however finely it is meshed; else
+    /// its triangles), CSR over `polygon_points` by `polygon_spans`.
+    face_polygons: Vec<(u32, u32)>,
+    polygon_spans: Vec<(u32, u32)>,
+    polygon_points: Vec<DVec2>,
+    topo: Topology,
+    /// Height (m) above a face that counts as in front of it: rounding, not geometry.
+    eps: f64,
+    /// Distance (m) within which a shadow line counts as touching a face.
+    tol: f64,
+}
+
+/// A face's state along one direction.
+const OFF: u8 = 0; // faces away: nothing to decide
+const CLEAR: u8 = 1;
+const DARK: u8 = 2;
+const EDGE: u8 = 3; // a shadow or contact line crosses it: cut into cells
+const UNSET: u8 = 4;
+
+/// One direction's state in an epoch (kept for the next epoch when the direction is the
+/// same: a Sun fixed in the body frame).
+#[derive(Default)]
+pub struct Direction {
+    d: Option<DVec3>,
+    grid: Grid,
+    status: Vec<u8>,
+    /// (face, edge) for every silhouette edge whose shadow crosses the face, sorted.
+    pairs: Vec<(u32, u32)>,
+    silhouette: Vec<bool>,
+    queue: Vec<u32>,
+    /// Rays cast for this direction's groups.
+    rays: u64,
+}
+
+/// Per-thread buffers.
+#[derive(Default)]
+pub struct Scratch {
+    dirs: [Direction; 3],
+    cells: Cells,
+    lines: Vec<(DVec2, DVec2)>,
+}
+
+impl Silhouettes {
+    pub fn build(scene: &Scene, faces: &Faces) -> Silhouettes {
+        let mesh = &scene.mesh;
+        let nt = mesh.triangles.len();
+        let mut tri_face = vec![0u32; nt];
+        for (i, f) in faces.faces.iter().enumerate() {
+            for &t in &f.triangles {
+                tri_face[t as usize] = i as u32;
+            }
+        }
+        let normals: Vec<DVec3> = (0..nt)
+            .map(|i| mesh.area_vector(i).normalize_or_zero())
+            .collect();
+        let two_sided: Vec<bool> = faces
+            .faces
+            .iter()
+            .map(|f| scene.materials[f.material as usize].two_sided)
+            .collect();
+        let tri_two_sided: Vec<bool> = tri_face.iter().map(|&f| two_sided[f as usize]).collect();
+        let (_, scale) = mesh.bounding_sphere();
+        let eps = 1e-9 * scale;
+        let topo = Topology::build(mesh, faces, &tri_face, &tri_two_sided, eps);
+        let face_point: Vec<DVec3> = faces
+            .faces
+            .iter()
+            .map(|f| mesh.vertices[mesh.triangles[f.triangles[0] as usize][0] as usize])
+            .collect();
+        let face_basis: Vec<(DVec3, DVec3)> = faces
+            .faces
+            .iter()
+            .map(|f| crate::radiometry::earth::orthonormal_basis(f.normal))
+            .collect();
+        let (mut face_polygons, mut polygon_spans, mut polygon_points) =
+            (Vec::new(), Vec::new(), Vec::new());
+        let (mut pts, mut order, mut hull) = (Vec::new(), Vec::new(), Vec::new());
+        for (i, f) in faces.faces.iter().enumerate() {
+            let (u, w) = face_basis[i];
+            let o = face_point[i];
+            let to2 = |p: DVec3| DVec2::new((p - o).dot(u), (p - o).dot(w));
+            let first = polygon_spans.len() as u32;
+            let mut push = |poly: &[DVec2]| {
+                let s = polygon_points.len() as u32;
+                polygon_points.extend_from_slice(poly);
+                polygon_spans.push((s, polygon_points.len() as u32));
+            };
+            pts.clear();
+            for &t in &f.triangles {
+                pts.extend(mesh.triangles[t as usize].map(|v| to2(mesh.vertices[v as usize])));
+            }
+            let mut convex = false;
+            if f.triangles.len() > 1 {
+                crate::geometry::polygon::convex_hull(&pts, &mut order, &mut hull);
+                let (a, _) = area_centroid(&hull);
+                convex = hull.len() >= 3 && (a - f.area).abs() <= 1e-9 * f.area;
+            }
+            if convex {
+                push(&hull);
+            } else {
+                for tri in pts.chunks(3) {
+                    push(tri);
+                }
+            }
+            face_polygons.push((first, polygon_spans.len() as u32));
+        }
+        Silhouettes {
+            vertices: mesh.vertices.clone(),
+            triangles: mesh.triangles.clone(),
+            normals,
+            face_normal: faces.faces.iter().map(|f| f.normal).collect(),
+            face_point,
+            face_basis,
+            face_polygons,
+            polygon_spans,
+            polygon_points,
+            two_sided,
+            face_triangles: faces.faces.iter().map(|f| f.triangles.clone()).collect(),
+            tri_face,
+            topo,
+            eps,
+            tol: eps,
+        }
+    }
+
+    fn mesh(&self) -> Triangles<'_> {
+        Triangles {
+            vertices: &self.vertices,
+            triangles: &self.triangles,
+            tri_face: &self.tri_face,
+        }
+    }
+
+    /// Does face `f` take light from (or look along) `d`, on either of its sides?
+    fn faces_along(&self, f: usize, d: DVec3) -> bool {
+        let c = self.face_normal[f].dot(d);
+        c > 0.0 || (self.two_sided[f] && c < 0.0)
+    }
+
+    /// Brings `scratch`'s direction `k` (0 view, 1 Sun, 2 Earth) to `d` for this epoch.
+    pub fn prepare(&self, scratch: &mut Scratch, k: usize, d: Option<DVec3>) {
+        let Some(d) = d else { return };
+        let dir = &mut scratch.dirs[k];
+        if dir.d == Some(d) {
+            return;
+        }
+        dir.d = Some(d);
+        dir.rays = 0;
+        let mesh = self.mesh();
+        let open = &self.topo.open;
+        let facing = |t: usize| self.normals[t].dot(d) > 0.0;
+        // a closed piece blocks a ray only where the ray leaves it: through a triangle
+        // facing along d
+        dir.grid.build(&mesh, d, |t| facing(t) || open[t]);
+        let nf = self.face_normal.len();
+        dir.status.clear();
+        dir.status.extend((0..nf).map(|f| {
+            if !self.faces_along(f, d) {
+                OFF
+            } else if self.topo.contacts_at[f] != self.topo.contacts_at[f + 1] {
+                EDGE
+            } else {
+                UNSET
+            }
+        }));
+        // silhouette edges and the faces their shadows cross
+        dir.pairs.clear();
+        dir.silhouette.clear();
+        dir.silhouette.resize(self.topo.edges.len(), false);
+        for (i, e) in self.topo.edges.iter().enumerate() {
+            let fold = if e.t1 == NONE || e.always {
+                true
+            } else {
+                facing(e.t0 as usize) != facing(e.t1 as usize)
+            };
+            let blocks = (facing(e.t0 as usize) || open[e.t0 as usize])
+                || (e.t1 != NONE && (facing(e.t1 as usize) || open[e.t1 as usize]));
+            if !fold {
+                continue;
+            }
+            dir.silhouette[i] = true;
+            if !blocks {
+                continue;
+            }
+            let status = &dir.status;
+            let pairs = &mut dir.pairs;
+            dir.grid.shadowed_by(
+                &mesh,
+                e.a,
+                e.b,
+                self.eps,
+                self.tol,
+                |t| status[self.tri_face[t] as usize] != OFF,
+                |t| pairs.push((self.tri_face[t as usize], i as u32)),
+            );
+        }
+        dir.pairs.sort_unstable();
+        dir.pairs.dedup();
+        for &(f, _) in &dir.pairs {
+            dir.status[f as usize] = EDGE;
+        }
+        // the rest in groups joined across edges no shadow crosses: one ray a group
+        for start in 0..nf {
+            if dir.status[start] != UNSET {
+                continue;
+            }
+            let t0 = self.face_triangles[start][0] as usize;
+            let [a, b, c] = self.triangles[t0].map(|i| self.vertices[i as usize]);
+            let p = (a + b + c) / 3.0;
+            dir.rays += 1;
+            let s = if dir.grid.blocked(&mesh, p, start as u32, self.eps) {
+                DARK
+            } else {
+                CLEAR
+            };
+            dir.status[start] = s;
+            dir.queue.clear();
+            dir.queue.push(start as u32);
+            while let Some(f) = dir.queue.pop() {
+                for &(g, e) in self.topo.neighbours(f as usize) {
+                    if dir.status[g as usize] == UNSET && !dir.silhouette[e as usize] {
+                        dir.status[g as usize] = s;
+                        dir.queue.push(g);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Rays cast by the last [`Silhouettes::prepare`] of each direction that built
+    /// anything (for the summary's count).
+    pub fn take_rays(&self, scratch: &mut Scratch) -> u64 {
+        scratch
+            .dirs
+            .iter_mut()
+            .map(|d| std::mem::take(&mut d.rays))
+            .sum()
+    }
+
+    /// Areas (m²) of `face` that are seen and sunlit, and seen and earthlit, with the
+    /// directions prepared for this epoch; `sun` and `earth` say which are wanted; plus
+    /// the rays cast.
+    pub fn areas(
+        &self,
+        scratch: &mut Scratch,
+        face: usize,
+        area: f64,
+        sun: bool,
+        earth: bool,
+    ) -> (f64, f64, u64) {
+        let want = [true, sun, earth];
+        let status: [u8; 3] = std::array::from_fn(|k| {
+            if !want[k] || scratch.dirs[k].d.is_none() {
+                CLEAR
+            } else {
+                match scratch.dirs[k].status[face] {
+                    OFF => CLEAR,
+                    s => s,
+                }
+            }
+        });
+        if status[0] == DARK {
+            return (0.0, 0.0, 0);
+        }
+        if !status.contains(&EDGE) {
+            let lit = |k: usize| {
+                if want[k] && status[k] == CLEAR {
+                    area
+                } else {
+                    0.0
+                }
+            };
+            return (lit(1), lit(2), 0);
+        }
+        // cut the face by the lines of every shadow crossing it along the directions it
+        // is an edge face of, and by its contacts
+        let n = self.face_normal[face];
+        let (u, w) = self.face_basis[face];
+        let o = self.face_point[face];
+        let to2 = |p: DVec3| {
+            let r = p - o;
+            DVec2::new(r.dot(u), r.dot(w))
+        };
+        scratch.lines.clear();
+        for k in 0..3 {
+            if status[k] != EDGE {
+                continue;
+            }
+            let dir = &scratch.dirs[k];
+            let d = dir.d.expect("prepared");
+            let nd = n.dot(d);
+            let from = dir.pairs.partition_point(|p| p.0 < face as u32);
+            for &(f, e) in &dir.pairs[from..] {
+                if f != face as u32 {
+                    break;
+                }
+                let e = &self.topo.edges[e as usize];
+                // along d onto the face's plane
+                let onto = |x: DVec3| to2(x - d * (n.dot(x - o) / nd));
+                let (p, q) = (onto(e.a), onto(e.b));
+                scratch.lines.push((p, q - p));
+            }
+        }
+        for &(a, b) in self.topo.contacts_of(face) {
+            let (p, q) = (to2(a), to2(b));
+            scratch.lines.push((p, q - p));
+        }
+        let cells = &mut scratch.cells;
+        cells.clear();
+        let (first, last) = self.face_polygons[face];
+        for &(a, b) in &self.polygon_spans[first as usize..last as usize] {
+            cells.push(self.polygon_points[a as usize..b as usize].iter().copied());
+        }
+        let mut whole = true;
+        for &(p, dir) in &scratch.lines {
+            if !cells.split(p, dir, self.tol, MAX_CELLS) {
+                whole = false;
+                break;
+            }
+        }
+        let mesh = self.mesh();
+        let dirs = &scratch.dirs;
+        let mut rays = 0u64;
+        // (seen and sunlit, seen and earthlit) at a point of the face
+        let mut decide = |x: DVec3| -> (bool, bool) {
+            let mut open = [true; 3];
+            for k in 0..3 {
+                open[k] = match status[k] {
+                    CLEAR => true,
+                    DARK => false,
+                    _ => {
+                        rays += 1;
+                        !dirs[k].grid.blocked(&mesh, x, face as u32, self.eps)
+                    }
+                };
+                if k == 0 && !open[0] {
+                    return (false, false);
+                }
+            }
+            (open[0] && open[1], open[0] && open[2])
+        };
+        let (mut a_sun, mut a_earth) = (0.0, 0.0);
+        if whole {
+            for i in 0..cells.len() {
+                let (a, c) = area_centroid(cells.cell(i));
+                if a <= 0.0 {
+                    continue;
+                }
+                let (s, e) = decide(o + u * c.x + w * c.y);
+                a_sun += if s { a } else { 0.0 };
+                a_earth += if e { a } else { 0.0 };
+            }
+        } else {
+            // too many shadows for cells: a fixed grid of points on each triangle
+            for &t in &self.face_triangles[face] {
+                let [p0, p1, p2] = self.triangles[t as usize].map(|i| self.vertices[i as usize]);
+                let at = 0.5 * (p1 - p0).cross(p2 - p0).length();
+                let per = at / (SAMPLES * SAMPLES) as f64;
+                for i in 0..SAMPLES {
+                    for j in 0..SAMPLES - i {
+                        // the sub-triangles' centroids: upward ones, then downward ones
+                        let mut sub = vec![(i as f64 + 1.0 / 3.0, j as f64 + 1.0 / 3.0)];
+                        if j + 1 < SAMPLES - i {
+                            sub.push((i as f64 + 2.0 / 3.0, j as f64 + 2.0 / 3.0));
+                        }
+                        for (x, y) in sub {
+                            let (bx, by) = (x / SAMPLES as f64, y / SAMPLES as f64);
+                            let pt = p0 + (p1 - p0) * bx + (p2 - p0) * by;
+                            let (s, e) = decide(pt);
+                            a_sun += if s { per } else { 0.0 };
+                            a_earth += if e { per } else { 0.0 };
+                        }
+                    }
+                }
+            }
+        }
+        let lit = |k: usize, a: f64| if want[k] { a } else { 0.0 };
+        (lit(1, a_sun), lit(2, a_earth), rays)
+    }
+}

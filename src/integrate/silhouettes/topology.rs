@@ -1,0 +1,384 @@
+//! The mesh as a surface, built once per request: its edges (with the one or two
+//! triangles beside each), which faces meet across which edge, which connected pieces are
+//! closed, and where separate pieces touch or cross (the *contacts*).
+//!
+//! Along a direction d, what a face sees can change only across the shadow of an edge
+//! where the surface folds over as seen along d (a *silhouette* edge, or an open
+//! surface's border), or across a line where another piece of the mesh meets the face's
+//! plane inside the face (a contact: a boom's foot on a bus). The first kind depends on
+//! d and is found per epoch ([`super::grid`]); the second is fixed in the body frame and
+//! found here.
+
+use crate::geometry::{Faces, Mesh};
+use glam::DVec3;
+
+/// No triangle (a border edge's missing second side).
+pub const NONE: u32 = u32::MAX;
+
+/// One edge of the welded mesh.
+#[derive(Debug, Clone, Copy)]
+pub struct Edge {
+    /// Its ends, m.
+    pub a: DVec3,
+    pub b: DVec3,
+    /// The triangles on either side; `t1` is [`NONE`] on a border.
+    pub t0: u32,
+    pub t1: u32,
+    /// The two triangles run along the edge the same way (their normals disagree about
+    /// which side is out), or more than two triangles meet here: the edge counts as a
+    /// fold along every direction.
+    pub always: bool,
+}
+
+/// The surface's structure (see the module doc).
+pub struct Topology {
+    pub edges: Vec<Edge>,
+    /// Per face: the faces it meets across an edge, with that edge (CSR: `adjacent_at[f]
+    /// ..adjacent_at[f + 1]`).
+    pub adjacent_at: Vec<u32>,
+    pub adjacent: Vec<(u32, u32)>,
+    /// Per triangle: its piece is open (a border, a non-manifold or inconsistently wound
+    /// edge) or its material is two-sided, so it may block a ray whichever way it faces.
+    pub open: Vec<bool>,
+    /// Per face: segments where another piece of the mesh meets the face (m, in the
+    /// face's plane), CSR as `adjacent`.
+    pub contacts_at: Vec<u32>,
+    pub contacts: Vec<(DVec3, DVec3)>,
+}
+
+impl Topology {
+    pub fn build(
+        mesh: &Mesh,
+        faces: &Faces,
+        tri_face: &[u32],
+        two_sided: &[bool],
+        tol: f64,
+    ) -> Topology {
+        let nt = mesh.triangles.len();
+        let (welded, sorted) = if faces.edges.is_empty() {
+            mesh.welded_edges()
+        } else {
+            (faces.welded.clone(), faces.edges.clone())
+        };
+        // pieces by union-find over shared edges; a piece is open when any edge of it is
+        // not shared by exactly two triangles wound the opposite ways
+        let mut parent: Vec<u32> = (0..nt as u32).collect();
+        let mut open_root = vec![false; nt];
+        let mut edges = Vec::with_capacity(sorted.len() / 2 + 1);
+        let mut bad_triangles = Vec::new();
+        for shared in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+            let (wa, wb, t0) = shared[0];
+            let a = mesh.vertices[wa as usize];
+            let b = mesh.vertices[wb as usize];
+            let forward = |t: u32| {
+                let tri = mesh.triangles[t as usize];
+                (0..3).any(|k| {
+                    welded[tri[k] as usize] == wa && welded[tri[(k + 1) % 3] as usize] == wb
+                })
+            };
+            match shared.len() {
+                1 => {
+                    bad_triangles.push(t0);
+                    edges.push(Edge {
+                        a,
+                        b,
+                        t0,
+                        t1: NONE,
+                        always: true,
+                    });
+                }
+                2 => {
+                    let t1 = shared[1].2;
+                    union(&mut parent, t0, t1);
+                    let flipped = forward(t0) == forward(t1);
+                    if flipped {
+                        bad_triangles.extend([t0, t1]);
+                    }
+                    edges.push(Edge {
+                        a,
+                        b,
+                        t0,
+                        t1,
+                        always: flipped,
+                    });
+                }
+                _ => {
+                    for w in shared.windows(2) {
+                        union(&mut parent, w[0].2, w[1].2);
+                    }
+                    bad_triangles.extend(shared.iter().map(|s| s.2));
+                    // every pair meets here: one edge per neighbouring pair keeps the
+                    // faces' adjacency and the fold (always) for the shadow search
+                    for w in shared.windows(2) {
+                        edges.push(Edge {
+                            a,
+                            b,
+                            t0: w[0].2,
+                            t1: w[1].2,
+                            always: true,
+                        });
+                    }
+                }
+            }
+        }
+        for t in bad_triangles {
+            let r = find(&mut parent, t);
+            open_root[r as usize] = true;
+        }
+        let open: Vec<bool> = (0..nt as u32)
+            .map(|t| open_root[find(&mut parent, t) as usize] || two_sided[t as usize])
+            .collect();
+
+        let nf = faces.len();
+        let mut with_edge: Vec<(u32, (u32, u32))> = Vec::new();
+        for (i, e) in edges.iter().enumerate() {
+            if e.t1 == NONE {
+                continue;
+            }
+            let (f, g) = (tri_face[e.t0 as usize], tri_face[e.t1 as usize]);
+            if f != g {
+                with_edge.push((f, (g, i as u32)));
+                with_edge.push((g, (f, i as u32)));
+            }
+        }
+        let (adjacent_at, adjacent) = csr_of(nf, with_edge);
+
+        let contacts = contact_segments(mesh, &welded, tri_face, tol);
+        let (contacts_at, contacts) = csr_of(nf, contacts);
+        Topology {
+            edges,
+            adjacent_at,
+            adjacent,
+            open,
+            contacts_at,
+            contacts,
+        }
+    }
+
+    /// The faces `face` meets across an edge, with the edge.
+    pub fn neighbours(&self, face: usize) -> &[(u32, u32)] {
+        &self.adjacent[self.adjacent_at[face] as usize..self.adjacent_at[face + 1] as usize]
+    }
+
+    /// Where other pieces of the mesh meet `face` (segments in its plane, m).
+    pub fn contacts_of(&self, face: usize) -> &[(DVec3, DVec3)] {
+        &self.contacts[self.contacts_at[face] as usize..self.contacts_at[face + 1] as usize]
+    }
+}
+
+/// Groups `(key, value)` pairs by key into offsets (`n + 1`) and values.
+fn csr_of<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
+    items.sort_by_key(|x| x.0);
+    let mut at = vec![0u32; n + 1];
+    for (k, _) in &items {
+        at[*k as usize + 1] += 1;
+    }
+    for i in 0..n {
+        at[i + 1] += at[i];
+    }
+    (at, items.into_iter().map(|x| x.1).collect())
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        parent[x as usize] = parent[parent[x as usize] as usize];
+        x = parent[x as usize];
+    }
+    x
+}
+
+fn union(parent: &mut [u32], a: u32, b: u32) {
+    let (ra, rb) = (find(parent, a), find(parent, b));
+    if ra != rb {
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    }
+}
+
+/// Segments (m) where triangles of different faces that share no vertex meet: each is
+/// recorded on both faces. Found through a uniform grid of the triangles' boxes.
+fn contact_segments(
+    mesh: &Mesh,
+    welded: &[u32],
+    tri_face: &[u32],
+    tol: f64,
+) -> Vec<(u32, (DVec3, DVec3))> {
+    let nt = mesh.triangles.len();
+    if nt < 2 {
+        return Vec::new();
+    }
+    let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
+    let boxes: Vec<(DVec3, DVec3)> = corners
+        .iter()
+        .map(|c| {
+            let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(tol);
+            let hi = c[0].max(c[1]).max(c[2]) + DVec3::splat(tol);
+            (lo, hi)
+        })
+        .collect();
+    let (lo, hi) = boxes
+        .iter()
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), b| {
+            (lo.min(b.0), hi.max(b.1))
+        });
+    // cells of about the median triangle's box size
+    let mut sizes: Vec<f64> = boxes.iter().map(|b| (b.1 - b.0).max_element()).collect();
+    let mid = sizes.len() / 2;
+    sizes.select_nth_unstable_by(mid, f64::total_cmp);
+    let extent = (hi - lo).max(DVec3::splat(tol));
+    let cell = sizes[mid].max(extent.max_element() / 256.0).max(tol);
+    let dims = ((extent / cell).ceil().as_uvec3()).max(glam::UVec3::ONE);
+    let index = |p: DVec3| {
+        let q = ((p - lo) / cell).floor();
+        glam::UVec3::new(
+            (q.x.max(0.0) as u32).min(dims.x - 1),
+            (q.y.max(0.0) as u32).min(dims.y - 1),
+            (q.z.max(0.0) as u32).min(dims.z - 1),
+        )
+    };
+    let mut entries: Vec<(u64, u32)> = Vec::new();
+    for (t, b) in boxes.iter().enumerate() {
+        let (a, z) = (index(b.0), index(b.1));
+        for x in a.x..=z.x {
+            for y in a.y..=z.y {
+                for w in a.z..=z.z {
+                    let key = (x as u64) | ((y as u64) << 21) | ((w as u64) << 42);
+                    entries.push((key, t as u32));
+                }
+            }
+        }
+    }
+    entries.sort_unstable();
+    let mut candidates: Vec<(u32, u32)> = Vec::new();
+    for cell in entries.chunk_by(|x, y| x.0 == y.0) {
+        for (i, &(_, s)) in cell.iter().enumerate() {
+            for &(_, t) in &cell[i + 1..] {
+                if tri_face[s as usize] == tri_face[t as usize] {
+                    continue;
+                }
+                let (bs, bt) = (boxes[s as usize], boxes[t as usize]);
+                if bs.0.cmpgt(bt.1).any() || bt.0.cmpgt(bs.1).any() {
+                    continue;
+                }
+                let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
+                let shares = ts
+                    .iter()
+                    .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
+                if !shares {
+                    candidates.push((s.min(t), s.max(t)));
+                }
+            }
+        }
+    }
+    candidates.sort_unstable();
+    candidates.dedup();
+    let mut out = Vec::new();
+    for (s, t) in candidates {
+        if let Some((p, q)) = meet(&corners[s as usize], &corners[t as usize], tol) {
+            out.push((tri_face[s as usize], (p, q)));
+            out.push((tri_face[t as usize], (p, q)));
+        }
+    }
+    out
+}
+
+/// The segment where triangles `a` and `b` meet (touching within `tol` counts), when it
+/// is longer than `tol`; coplanar triangles are left out (nothing in a face's plane
+/// shades it).
+pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> {
+    let na = (a[1] - a[0]).cross(a[2] - a[0]).normalize_or_zero();
+    let nb = (b[1] - b[0]).cross(b[2] - b[0]).normalize_or_zero();
+    let line = na.cross(nb);
+    if line.length() < 1e-9 {
+        return None;
+    }
+    let line = line.normalize();
+    let sa = cut_by_plane(a, nb, b[0], tol, line)?;
+    let sb = cut_by_plane(b, na, a[0], tol, line)?;
+    let lo = sa.0.max(sb.0);
+    let hi = sa.1.min(sb.1);
+    if hi - lo <= tol {
+        return None;
+    }
+    // a point on the line: from a's segment
+    let (p0, t0) = sa.2;
+    Some((p0 + line * (lo - t0), p0 + line * (hi - t0)))
+}
+
+/// The interval (along `line`) of triangle `t` where it meets the plane (`n`, through
+/// `p`), with a point on it and that point's parameter.
+fn cut_by_plane(
+    t: &[DVec3; 3],
+    n: DVec3,
+    p: DVec3,
+    tol: f64,
+    line: DVec3,
+) -> Option<(f64, f64, (DVec3, f64))> {
+    let s = t.map(|v| n.dot(v - p));
+    if s.iter().all(|&x| x > tol) || s.iter().all(|&x| x < -tol) {
+        return None;
+    }
+    let mut pts: [DVec3; 4] = [DVec3::ZERO; 4];
+    let mut k = 0;
+    for i in 0..3 {
+        let j = (i + 1) % 3;
+        if s[i].abs() <= tol {
+            pts[k] = t[i];
+            k += 1;
+            if k == 4 {
+                break;
+            }
+        }
+        if (s[i] > tol && s[j] < -tol) || (s[i] < -tol && s[j] > tol) {
+            let u = s[i] / (s[i] - s[j]);
+            pts[k] = t[i] + (t[j] - t[i]) * u;
+            k += 1;
+            if k == 4 {
+                break;
+            }
+        }
+    }
+    if k < 2 {
+        return None;
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for q in &pts[..k] {
+        let x = q.dot(line);
+        lo = lo.min(x);
+        hi = hi.max(x);
+    }
+    Some((lo, hi, (pts[0], pts[0].dot(line))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_post_standing_on_a_plate_meets_it_along_its_foot() {
+        // a vertical triangle whose bottom edge lies on the plate z = 0
+        let plate = [
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let post = [
+            DVec3::new(-0.2, 0.0, 0.0),
+            DVec3::new(0.2, 0.0, 0.0),
+            DVec3::new(0.0, 0.0, 1.0),
+        ];
+        let (p, q) = meet(&plate, &post, 1e-9).expect("they meet");
+        let (lo, hi) = (p.x.min(q.x), p.x.max(q.x));
+        assert!(
+            (lo + 0.2).abs() < 1e-12 && (hi - 0.2).abs() < 1e-12,
+            "{p} {q}"
+        );
+        assert!(p.y.abs() < 1e-12 && p.z.abs() < 1e-12);
+        // lifted off the plate: no contact
+        let lifted = post.map(|v| v + DVec3::Z * 0.01);
+        assert!(meet(&plate, &lifted, 1e-9).is_none());
+        // piercing it: the segment inside the plate
+        let pierce = post.map(|v| v - DVec3::Z * 0.5);
+        let (p, q) = meet(&plate, &pierce, 1e-9).expect("pierces");
+        assert!(((p - q).length() - 0.2).abs() < 1e-12);
+    }
+}

@@ -20,7 +20,8 @@ pub struct SceneSummary {
     pub name: String,
     /// What the object is (sizes in metres).
     pub description: String,
-    /// Triangles in the mesh (0 when the scene is only an example request).
+    /// Triangles in the mesh at its default detail (0 when the scene is only an example
+    /// request).
     pub triangles: usize,
     /// Material names the mesh uses, in material-id order; a request's `materials` must
     /// name them.
@@ -56,7 +57,7 @@ pub fn summaries() -> &'static [SceneSummary] {
                         .split_whitespace()
                         .collect::<Vec<_>>()
                         .join(" "),
-                    triangles: (b.build)().triangles.len(),
+                    triangles: b.mesh().triangles.len(),
                     materials: b.material_names.iter().map(|s| s.to_string()).collect(),
                     example_epochs: ex.and_then(epochs_in),
                     example_url: ex.map(|_| format!("/v1/scenes/{}", b.name)),

@@ -19,6 +19,8 @@ use super::mesh::Mesh;
 use glam::DVec3;
 use std::f64::consts::TAU;
 
+pub mod cubesat;
+pub mod dish_sat;
 pub mod fragment;
 pub mod rocket_body;
 
@@ -114,6 +116,8 @@ pub const BUILTINS: &[Builtin] = &[
     },
     rocket_body::BUILTIN,
     fragment::BUILTIN,
+    dish_sat::BUILTIN,
+    cubesat::BUILTIN,
 ];
 
 /// The built-in object called `name`.

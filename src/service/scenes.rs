@@ -11,6 +11,14 @@ const EXAMPLES: &[(&str, &str)] = &[
     ("box-wing", include_str!("../../scenes/box-wing.json")),
     ("sphere", include_str!("../../scenes/sphere.json")),
     ("plate", include_str!("../../scenes/plate.json")),
+    ("rocket-body", include_str!("../../scenes/rocket-body.json")),
+    ("fragment", include_str!("../../scenes/fragment.json")),
+    ("dish-sat", include_str!("../../scenes/dish-sat.json")),
+    ("cubesat", include_str!("../../scenes/cubesat.json")),
+    (
+        "box-wing-tumbling",
+        include_str!("../../scenes/box-wing-tumbling.json"),
+    ),
 ];
 
 /// A built-in object and its example request.

@@ -12,8 +12,8 @@
 //!   the focus (x = −2.1 m); the booms are `strut` too.
 //!
 //! The bus, booms, struts and feed are closed prisms. Coarse: dish 16 rings × 48 sectors,
-//! 8-sided struts (2 032 triangles); medium (default): 56 × 160, 16 sides (19 744); fine:
-//! 170 × 540, 48 sides (193 568); the flat bus and wings are gridded finer with each level.
+//! 8-sided struts (2 064 triangles); medium (default): 56 × 160, 16 sides (19 808); fine:
+//! 170 × 540, 48 sides (203 284); the flat bus and wings are gridded finer with each level.
 
 use super::{push_grid_box, push_grid_quad, push_tube, Builtin, Detail};
 use crate::geometry::mesh::Mesh;
@@ -26,7 +26,7 @@ pub const BUILTIN: Builtin = Builtin {
                   booms along ±y turned 30° about y (`panel`, thin: use two_sided), a 2.2 m \
                   parabolic dish on a boom from the -x face opening to -x (`dish`, thin: use \
                   two_sided) with four feed struts to the feed and booms (`strut`); detail \
-                  coarse 2k, medium (default) 20k, fine 194k triangles",
+                  coarse 2k, medium (default) 20k, fine 203k triangles",
     material_names: &["body", "panel", "dish", "strut"],
     default_detail: Detail::Medium,
     build,

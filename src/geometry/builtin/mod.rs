@@ -574,12 +574,13 @@ pub fn push_revolution(mesh: &mut Mesh, profile: &[(f64, f64)], materials: &[u32
     }
 }
 
+/// A piece of a profile: the curve `t ∈ [0, 1] → (r, z)`, its segment count and material.
+pub type ProfilePiece<'a> = (&'a dyn Fn(f64) -> (f64, f64), u32, u32);
+
 /// Samples a profile made of pieces: each piece is a curve `t ∈ [0, 1] → (r, z)` with the
 /// material of its segments, taken at `n` segments; a piece starts where the last ended.
 /// Gives the points and the material of each segment, for [`push_revolution`].
-pub fn sample_profile(
-    pieces: &[(&dyn Fn(f64) -> (f64, f64), u32, u32)],
-) -> (Vec<(f64, f64)>, Vec<u32>) {
+pub fn sample_profile(pieces: &[ProfilePiece]) -> (Vec<(f64, f64)>, Vec<u32>) {
     let mut points = Vec::new();
     let mut materials = Vec::new();
     for &(curve, n, m) in pieces {

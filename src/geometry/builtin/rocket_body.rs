@@ -10,8 +10,8 @@
 //! its own, lit and seen through the exit, so no material needs to be two-sided.
 //!
 //! The whole stage is one closed surface of revolution (z from −1.0 to 8.0 m): coarse 24
-//! sectors × 42 profile segments (1 968 triangles), medium 80 × 126 (20 000), fine 256 ×
-//! 395 (201 728); the curved parts (domes, nozzle) get most of the profile's points.
+//! sectors × 44 profile segments (2 064 triangles), medium 80 × 126 (20 000), fine 256 ×
+//! 392 (200 192); the curved parts (domes, nozzle) get most of the profile's points.
 
 use super::{push_revolution, sample_profile, Builtin, Detail};
 use crate::geometry::mesh::Mesh;

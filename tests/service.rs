@@ -391,7 +391,7 @@ fn scenes_are_the_builtins_and_the_example_files() {
             .iter()
             .find(|s| s["name"] == b.name)
             .unwrap_or_else(|| panic!("{} not listed", b.name));
-        assert_eq!(s["triangles"], (b.build)().triangles.len());
+        assert_eq!(s["triangles"], b.mesh().triangles.len());
         assert_eq!(s["materials"], serde_json::json!(b.material_names));
     }
     for name in ["box-wing", "sphere", "plate"] {

@@ -506,3 +506,66 @@ fn shipped_obj_files_match_the_builtins() {
         );
     }
 }
+
+/// Every example request in `scenes/` is valid.
+#[test]
+fn every_shipped_scene_validates() {
+    let dir = format!("{}/scenes", env!("CARGO_MANIFEST_DIR"));
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            Scene::from_json(&text, &Limits::unlimited())
+                .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            n += 1;
+        }
+    }
+    assert!(n >= 9, "{n} scenes");
+}
+
+/// `detail` picks a built-in object's tessellation; the old objects keep their mesh by
+/// default; a wrong level, or a level without `builtin`, is an error naming the field.
+#[test]
+fn builtin_detail_levels() {
+    use glint::geometry::builtin;
+    let mesh = |detail: Option<&str>| {
+        let mut spec = json!({ "builtin": "box-wing" });
+        if let Some(d) = detail {
+            spec["detail"] = json!(d);
+        }
+        let v = json!({
+            "object": { "mesh": spec, "materials": ["seed-body-wrap",
+                { "name": "body", "preset": "seed-body-wrap" },
+                { "name": "panel", "preset": "seed-body-wrap" },
+                { "name": "dish", "preset": "seed-body-wrap" }] },
+            "epochs": [ { "t": 0, "sun": [1, 0, 0], "observer": [1e7, 0, 0] } ]
+        });
+        check(&v).map(|s| s.mesh)
+    };
+    let plain = builtin::box_wing();
+    assert_eq!(mesh(None).unwrap().triangles, plain.triangles);
+    assert_eq!(mesh(Some("coarse")).unwrap().triangles, plain.triangles);
+    let medium = builtin::box_wing_with(48, 128, 3);
+    assert_eq!(mesh(Some("medium")).unwrap().triangles, medium.triangles);
+    assert!(mesh(Some("fine")).unwrap().triangles.len() > 150_000);
+    let e = mesh(Some("extra-fine")).unwrap_err();
+    assert_eq!(e.field, "object.mesh.detail");
+    let e = check(&json!({
+        "object": { "mesh": { "obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "detail": "fine" },
+                    "materials": ["seed-body-wrap"] },
+        "epochs": [ { "t": 0, "sun": [1, 0, 0], "observer": [1e7, 0, 0] } ]
+    }))
+    .unwrap_err();
+    assert_eq!(e.field, "object.mesh.detail");
+    for b in builtin::BUILTINS {
+        for d in builtin::Detail::ALL {
+            assert!(
+                !(b.build)(d).triangles.is_empty(),
+                "{} {}",
+                b.name,
+                d.name()
+            );
+        }
+    }
+}

@@ -114,6 +114,13 @@ pub struct MeshSpec {
     /// Name of an object shipped with glint (see `GET /v1/scenes`), e.g. `box-wing`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub builtin: Option<String>,
+    /// Tessellation of a `builtin` object: `coarse` (about 2k triangles), `medium` (about
+    /// 20k) or `fine` (about 200k). Default: `medium`, except `box-wing`, `sphere` and
+    /// `plate`, which default to their original meshes (coarse: 268, 1280 and 2 triangles;
+    /// the box-wing's medium is the 15.5k-triangle fine-dish box-wing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = "medium")]
+    pub detail: Option<String>,
 }
 
 /// A material: a preset name, or an object with `name` and either `model` + parameters

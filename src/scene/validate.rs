@@ -671,6 +671,12 @@ fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh
             "goes only with inline `triangles` (OBJ and built-in meshes use material names)",
         );
     }
+    if spec.detail.is_some() && spec.builtin.is_none() {
+        return err(
+            "object.mesh.detail",
+            "goes only with `builtin` (OBJ and inline meshes come as they are)",
+        );
+    }
     let mut mesh = if let Some(name) = &spec.builtin {
         let b = builtin::find(name).ok_or_else(|| {
             let known: Vec<_> = builtin::BUILTINS.iter().map(|b| b.name).collect();
@@ -679,7 +685,16 @@ fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh
                 format!("unknown object `{name}`; built-in: {}", known.join(", ")),
             )
         })?;
-        let mut mesh = (b.build)();
+        let detail = match &spec.detail {
+            None => b.default_detail,
+            Some(d) => builtin::Detail::parse(d).ok_or_else(|| {
+                ValidationError::new(
+                    "object.mesh.detail",
+                    format!("unknown detail `{d}`; expected coarse, medium or fine"),
+                )
+            })?,
+        };
+        let mut mesh = (b.build)(detail);
         // map the object's material names onto the request's materials
         let mut map = Vec::new();
         for n in b.material_names {

@@ -11,6 +11,14 @@ const EXAMPLES: &[(&str, &str)] = &[
     ("box-wing", include_str!("../../scenes/box-wing.json")),
     ("sphere", include_str!("../../scenes/sphere.json")),
     ("plate", include_str!("../../scenes/plate.json")),
+    ("rocket-body", include_str!("../../scenes/rocket-body.json")),
+    ("fragment", include_str!("../../scenes/fragment.json")),
+    ("dish-sat", include_str!("../../scenes/dish-sat.json")),
+    ("cubesat", include_str!("../../scenes/cubesat.json")),
+    (
+        "box-wing-tumbling",
+        include_str!("../../scenes/box-wing-tumbling.json"),
+    ),
 ];
 
 /// A built-in object and its example request.
@@ -20,7 +28,8 @@ pub struct SceneSummary {
     pub name: String,
     /// What the object is (sizes in metres).
     pub description: String,
-    /// Triangles in the mesh (0 when the scene is only an example request).
+    /// Triangles in the mesh at its default detail (0 when the scene is only an example
+    /// request).
     pub triangles: usize,
     /// Material names the mesh uses, in material-id order; a request's `materials` must
     /// name them.
@@ -56,7 +65,7 @@ pub fn summaries() -> &'static [SceneSummary] {
                         .split_whitespace()
                         .collect::<Vec<_>>()
                         .join(" "),
-                    triangles: (b.build)().triangles.len(),
+                    triangles: b.mesh().triangles.len(),
                     materials: b.material_names.iter().map(|s| s.to_string()).collect(),
                     example_epochs: ex.and_then(epochs_in),
                     example_url: ex.map(|_| format!("/v1/scenes/{}", b.name)),

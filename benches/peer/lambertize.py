@@ -1,12 +1,12 @@
 """Rewrite a glint request for an accuracy comparison with the peer.
 
     python3 benches/peer/lambertize.py IN.json OUT.json [--albedo 0.5] [--obj MESH.obj]
-        [--epochs N] [--tumble DEG]
+        [--epochs N] [--stride K] [--tumble DEG]
 
 Every material becomes `lambert` of albedo --albedo under its own name, keeping its
 `two_sided`; earthshine is turned off (the peer has only the Sun).  --obj puts that
 OBJ text inline as the mesh (so glint and the peer read one mesh); --epochs keeps the
-first N epochs.  --tumble DEG gives epoch i the body -> inertial attitude q_i, a turn of
+first N epochs, --stride K every K-th (after --epochs).  --tumble DEG gives epoch i the body -> inertial attitude q_i, a turn of
 i*DEG degrees about a fixed skew axis, and turns its `sun`, `observer` and `earth` into
 the inertial frame (inertial = q_i * body): the light curve must not change, which
 checks that glint and the peer both rotate inertial vectors back with q^-1.
@@ -35,6 +35,7 @@ def main():
     ap.add_argument("--albedo", type=float, default=0.5)
     ap.add_argument("--obj", help="use this OBJ text as the mesh")
     ap.add_argument("--epochs", type=int, default=0)
+    ap.add_argument("--stride", type=int, default=1, help="keep every K-th epoch")
     ap.add_argument("--tumble", type=float, default=0.0, help="degrees per epoch (0: no attitudes)")
     a = ap.parse_args()
 
@@ -53,6 +54,7 @@ def main():
     req.pop("thumbnails", None)
     if a.epochs:
         req["epochs"] = req["epochs"][: a.epochs]
+    req["epochs"] = req["epochs"][:: max(a.stride, 1)]
     if a.tumble:
         axis = np.array([0.3, -0.5, 0.81])
         axis /= np.linalg.norm(axis)

@@ -156,15 +156,33 @@ fn main() {
 
     println!(
         "{:<12} {:<7} {:>9} {:>8} {:>6} {:>9} {:>10} {:>10} {:>9} {:>9} {:>12}",
-        "class", "detail", "triangles", "faces", "epochs", "load ms", "total ms", "median ms",
-        "ms/epoch", "epochs/s", "rays"
+        "class",
+        "detail",
+        "triangles",
+        "faces",
+        "epochs",
+        "load ms",
+        "total ms",
+        "median ms",
+        "ms/epoch",
+        "epochs/s",
+        "rays"
     );
     for r in &rows {
         let per = r.best_ms / r.epochs.max(1) as f64;
         println!(
             "{:<12} {:<7} {:>9} {:>8} {:>6} {:>9.1} {:>10.2} {:>10.2} {:>9.4} {:>9.0} {:>12}",
-            r.class, r.detail, r.triangles, r.faces, r.epochs, r.load_ms, r.best_ms, r.median_ms,
-            per, 1e3 / per, r.rays
+            r.class,
+            r.detail,
+            r.triangles,
+            r.faces,
+            r.epochs,
+            r.load_ms,
+            r.best_ms,
+            r.median_ms,
+            per,
+            1e3 / per,
+            r.rays
         );
     }
     if let Some(path) = &args.out {
@@ -175,8 +193,18 @@ fn main() {
             let per = r.best_ms / r.epochs.max(1) as f64;
             csv += &format!(
                 "{},{},{},{},{},{:.3},{:.3},{:.3},{:.6},{:.2},{},{}\n",
-                r.class, r.detail, r.triangles, r.faces, r.epochs, r.load_ms, r.best_ms,
-                r.median_ms, per, 1e3 / per, r.rays, repeat
+                r.class,
+                r.detail,
+                r.triangles,
+                r.faces,
+                r.epochs,
+                r.load_ms,
+                r.best_ms,
+                r.median_ms,
+                per,
+                1e3 / per,
+                r.rays,
+                repeat
             );
         }
         std::fs::write(path, csv).expect("write the CSV");

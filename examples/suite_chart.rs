@@ -28,7 +28,11 @@ type Points = BTreeMap<String, Vec<(f64, f64)>>;
 fn read(path: &str) -> Result<Points, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
     let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let header: Vec<&str> = lines.next().ok_or(format!("{path}: empty"))?.split(',').collect();
+    let header: Vec<&str> = lines
+        .next()
+        .ok_or(format!("{path}: empty"))?
+        .split(',')
+        .collect();
     let col = |name: &str| {
         header
             .iter()
@@ -43,14 +47,18 @@ fn read(path: &str) -> Result<Points, String> {
             continue;
         }
         let num = |i: usize| -> Result<f64, String> {
-            f.get(i)
-                .and_then(|v| v.parse().ok())
-                .ok_or(format!("{path}:{}: bad number in column {}", n + 2, i + 1))
+            f.get(i).and_then(|v| v.parse().ok()).ok_or(format!(
+                "{path}:{}: bad number in column {}",
+                n + 2,
+                i + 1
+            ))
         };
         if f.get(c).is_some_and(|v| *v == "class") {
             continue; // a header repeated by appending runs
         }
-        out.entry(f[c].to_string()).or_default().push((num(t)?, num(m)?));
+        out.entry(f[c].to_string())
+            .or_default()
+            .push((num(t)?, num(m)?));
     }
     for v in out.values_mut() {
         v.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -82,12 +90,18 @@ fn draw(glint: &Points, peer: &Points, out: &str) -> Result<(), String> {
     }
     let font = |px: u32| ("sans-serif", px as f64);
     let mut chart = ChartBuilder::on(&root)
-        .caption("Time per epoch against mesh size: glint and Mitsuba 3", font(20))
+        .caption(
+            "Time per epoch against mesh size: glint and Mitsuba 3",
+            font(20),
+        )
         .margin(14)
         .margin_bottom(30)
         .x_label_area_size(48)
         .y_label_area_size(72)
-        .build_cartesian_2d((x0 / 2.0..x1 * 2.0).log_scale(), (y0 / 3.0..y1 * 3.0).log_scale())
+        .build_cartesian_2d(
+            (x0 / 2.0..x1 * 2.0).log_scale(),
+            (y0 / 3.0..y1 * 3.0).log_scale(),
+        )
         .map_err(e)?;
     let plain = |v: &f64| {
         let digits = (-v.log10()).ceil().max(0.0) as usize;
@@ -106,7 +120,12 @@ fn draw(glint: &Points, peer: &Points, out: &str) -> Result<(), String> {
         .map_err(e)?;
     let mut others = Vec::new();
     let mut classes: Vec<&String> = glint.keys().chain(peer.keys()).collect();
-    classes.sort_by_key(|c| (CLASSES.iter().position(|k| k == c).unwrap_or(99), c.as_str()));
+    classes.sort_by_key(|c| {
+        (
+            CLASSES.iter().position(|k| k == c).unwrap_or(99),
+            c.as_str(),
+        )
+    });
     classes.dedup();
     for class in classes {
         let col = colour(class, &mut others);
@@ -115,21 +134,33 @@ fn draw(glint: &Points, peer: &Points, out: &str) -> Result<(), String> {
                 .draw_series(LineSeries::new(points.clone(), col.stroke_width(2)))
                 .map_err(e)?
                 .label(class.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(2))
+                });
             chart
                 .draw_series(points.iter().map(|&p| Circle::new(p, 4, col.filled())))
                 .map_err(e)?;
         }
         if let Some(points) = peer.get(class) {
             let s = chart
-                .draw_series(DashedLineSeries::new(points.clone(), 6, 4, col.stroke_width(1)))
+                .draw_series(DashedLineSeries::new(
+                    points.clone(),
+                    6,
+                    4,
+                    col.stroke_width(1),
+                ))
                 .map_err(e)?;
             if !glint.contains_key(class) {
-                s.label(class.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(1)));
+                s.label(class.clone()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], col.stroke_width(1))
+                });
             }
             chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 4, col.stroke_width(1))))
+                .draw_series(
+                    points
+                        .iter()
+                        .map(|&p| Circle::new(p, 4, col.stroke_width(1))),
+                )
                 .map_err(e)?;
         }
     }

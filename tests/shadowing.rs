@@ -66,11 +66,12 @@ fn dirs() -> (DVec3, DVec3) {
     )
 }
 
-/// Irradiance and lit-and-seen area of the half-covered plate at tolerance `tol`, with
-/// shadows clipped exactly (`clip`) or sampled by rays.
+/// Irradiance and lit-and-seen area of the half-covered plate at tolerance `tol`, by the
+/// `adaptive` method with shadows clipped exactly (`clip`) or sampled by rays.
 fn half_result(l: DVec3, v: DVec3, cells: u32, occ: Occluder, tol: f64, clip: bool) -> (f64, f64) {
     let (mesh, mats) = half_scene(if l.z > v.z { l } else { v }, cells, 0.5, occ);
     let mut sc = scene(mesh, mats, vec![epoch(l, v * RANGE)]);
+    sc.method = glint::scene::Method::Adaptive;
     sc.tolerance = tol;
     sc.clip_shadows = clip;
     let r = glint::simulate(&sc);
@@ -209,7 +210,8 @@ fn box_wing_panels(cot: f64, tol: f64, mirror: bool, clip: bool) -> (f64, f64, f
         ] },
         "epochs": [ { "t": 0, "sun": sun.to_array(), "observer": (v * RANGE).to_array() } ],
         "illumination": { "earthshine": "off" },
-        "tolerance": tol
+        "tolerance": tol,
+        "method": "adaptive"
     });
     let mut sc = from_json(&request);
     sc.clip_shadows = clip;

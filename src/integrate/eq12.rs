@@ -213,7 +213,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         sil.prepare(s, 0, Some(v));
         sil.prepare(s, 1, (es > 0.0).then_some(l));
         sil.prepare(s, 2, earthshine.shadow_dir);
-        exact_rays += sil.take_rays(s);
+        exact_rays += sil.group_rays(s);
     }
     let mut reference = unshadowed;
     for sweep in 0..2 {

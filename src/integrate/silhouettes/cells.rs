@@ -69,14 +69,12 @@ impl Cells {
                     let (q0, q1) = (poly[k], poly[(k + 1) % n]);
                     let (s0, s1) = (side(q0), side(q1));
                     let in0 = if keep_left { s0 >= 0.0 } else { s0 <= 0.0 };
-                    let in1 = if keep_left { s1 >= 0.0 } else { s1 <= 0.0 };
                     if in0 {
                         self.next_points.push(q0);
                     }
                     if (s0 > 0.0 && s1 < 0.0) || (s0 < 0.0 && s1 > 0.0) {
                         self.next_points.push(q0 + (q1 - q0) * (s0 / (s0 - s1)));
                     }
-                    let _ = in1;
                 }
                 let e = self.next_points.len() as u32;
                 if e - s >= 3 {
@@ -95,6 +93,105 @@ impl Cells {
         std::mem::swap(&mut self.spans, &mut self.next_spans);
         true
     }
+}
+
+/// Cuts convex polygon `poly` along the segments `segs` (p, q) into cells that no
+/// segment crosses: a cell is split along a segment's line only where the segment itself
+/// crosses it, so k segments make about k cells, not k². Calls `cell` with each; false
+/// when there would be more than `max` cells (the cells so far have been given).
+pub fn cut_by_segments(
+    poly: &[DVec2],
+    segs: &[(DVec2, DVec2)],
+    tol: f64,
+    max: usize,
+    mut cell: impl FnMut(&[DVec2]),
+) -> bool {
+    let mut stack: Vec<(Vec<DVec2>, Vec<u32>)> =
+        vec![(poly.to_vec(), (0..segs.len() as u32).collect())];
+    let mut made = 0usize;
+    let mut pieces = Cells::default();
+    while let Some((c, mut cand)) = stack.pop() {
+        cand.retain(|&i| crosses(&c, segs[i as usize], tol));
+        let Some(&first) = cand.first() else {
+            made += 1;
+            if made > max {
+                return false;
+            }
+            cell(&c);
+            continue;
+        };
+        let (p, q) = segs[first as usize];
+        pieces.clear();
+        pieces.push(c.iter().copied());
+        pieces.split(p, q - p, tol, usize::MAX);
+        let rest: Vec<u32> = cand[1..].to_vec();
+        if pieces.len() < 2 {
+            stack.push((c, rest));
+            continue;
+        }
+        for i in 0..pieces.len() {
+            stack.push((pieces.cell(i).to_vec(), rest.clone()));
+        }
+    }
+    true
+}
+
+/// Does segment (p, q) pass through the interior of convex polygon `c` (by more than
+/// `tol`)? Its part inside the polygon (Cyrus–Beck) must be longer than `tol`, and the
+/// polygon must lie on both sides of its line.
+fn crosses(c: &[DVec2], (p, q): (DVec2, DVec2), tol: f64) -> bool {
+    let d = q - p;
+    let len = d.length();
+    if len <= tol {
+        return false;
+    }
+    let dir = d / len;
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &v in c {
+        let s = dir.perp_dot(v - p);
+        lo = lo.min(s);
+        hi = hi.max(s);
+    }
+    if lo >= -tol || hi <= tol {
+        return false;
+    }
+    // clip the segment to the polygon: orientation-free, each edge's inward side is the
+    // side the polygon's centroid lies on
+    let centre = c.iter().copied().sum::<DVec2>() / c.len() as f64;
+    let (mut t0, mut t1) = (0.0, len);
+    let n = c.len();
+    for k in 0..n {
+        let (a, b) = (c[k], c[(k + 1) % n]);
+        let e = b - a;
+        let el = e.length();
+        if el == 0.0 {
+            continue;
+        }
+        let normal = e.perp() / el;
+        let inward = if normal.dot(centre - a) >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let dist = inward * normal.dot(p - a); // ≥ 0 inside
+        let rate = inward * normal.dot(dir);
+        if rate == 0.0 {
+            if dist < -tol {
+                return false;
+            }
+        } else {
+            let t = -dist / rate;
+            if rate > 0.0 {
+                t0 = f64::max(t0, t);
+            } else {
+                t1 = f64::min(t1, t);
+            }
+        }
+        if t1 - t0 <= tol {
+            return false;
+        }
+    }
+    t1 - t0 > tol
 }
 
 /// Area (m², unsigned) and centroid of a convex polygon.
@@ -137,5 +234,26 @@ mod tests {
         assert_eq!(c.len(), 4);
         // the cap on cells
         assert!(!c.split(DVec2::new(0.3, 0.0), DVec2::new(1.0, 1.0), 1e-12, 4));
+    }
+
+    #[test]
+    fn segments_cut_only_where_they_reach() {
+        let square = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
+        // a segment from the left edge to the middle, and one outside: two cells; the
+        // full line of the first would also cut, but its segment stops at x = 0.5
+        let segs = [
+            (DVec2::new(0.0, 0.5), DVec2::new(0.5, 0.5)),
+            (DVec2::new(0.5, 0.5), DVec2::new(0.5, 1.0)),
+            (DVec2::new(2.0, 0.0), DVec2::new(2.0, 1.0)),
+        ];
+        let mut areas = Vec::new();
+        assert!(cut_by_segments(&square, &segs, 1e-12, 64, |c| areas
+            .push(area_centroid(c).0)));
+        areas.sort_by(f64::total_cmp);
+        // the first segment halves the square; the second then cuts the upper half's
+        // part it reaches (x = 0.5 up from y = 0.5): the quarter and the rest
+        assert_eq!(areas.len(), 3, "{areas:?}");
+        assert!((areas.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        assert!((areas[0] - 0.25).abs() < 1e-15 && (areas[2] - 0.5).abs() < 1e-15);
     }
 }

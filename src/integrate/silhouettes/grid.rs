@@ -14,9 +14,8 @@ pub struct Grid {
     pub d: DVec3,
     u: DVec3,
     w: DVec3,
-    /// Per mesh vertex: its position across d (m) and its height along d (m).
+    /// Per mesh vertex: its position across d (m).
     pub at: Vec<DVec2>,
-    pub h: Vec<f64>,
     lo: DVec2,
     inv_cell: f64,
     nx: usize,
@@ -27,35 +26,50 @@ pub struct Grid {
     counts: Vec<u32>,
 }
 
-/// What the grid needs of the mesh.
-pub struct Triangles<'a> {
+/// What the grid needs of the mesh: its faces as convex polygons (a face's outline when
+/// it is convex, else its triangles), by vertex index.
+pub struct Polygons<'a> {
     pub vertices: &'a [DVec3],
-    pub triangles: &'a [[u32; 3]],
-    pub tri_face: &'a [u32],
+    /// Per polygon: its range of `index`.
+    pub spans: &'a [(u32, u32)],
+    pub index: &'a [u32],
+    /// Per polygon: its face, and the face's unit normal and a point of its plane.
+    pub face: &'a [u32],
+    pub normal: &'a [DVec3],
+    pub point: &'a [DVec3],
+}
+
+impl Polygons<'_> {
+    pub fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    fn corners(&self, i: usize) -> &[u32] {
+        let (a, b) = self.spans[i];
+        &self.index[a as usize..b as usize]
+    }
 }
 
 impl Grid {
-    /// Projects the mesh along `d` and bins the triangles `keep` says may block.
-    pub fn build(&mut self, mesh: &Triangles, d: DVec3, keep: impl Fn(usize) -> bool) {
+    /// Projects the mesh along `d` and bins the polygons `keep` says may block.
+    pub fn build(&mut self, mesh: &Polygons, d: DVec3, keep: impl Fn(usize) -> bool) {
         let (u, w) = crate::radiometry::earth::orthonormal_basis(d);
         self.d = d;
         self.u = u;
         self.w = w;
         self.at.clear();
-        self.h.clear();
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
         for v in mesh.vertices {
             let p = DVec2::new(v.dot(u), v.dot(w));
             lo = lo.min(p);
             hi = hi.max(p);
             self.at.push(p);
-            self.h.push(v.dot(d));
         }
         let ext = (hi - lo).max(DVec2::splat(1e-300));
-        let kept: Vec<u32> = (0..mesh.triangles.len() as u32)
+        let kept: Vec<u32> = (0..mesh.len() as u32)
             .filter(|&t| keep(t as usize))
             .collect();
-        // about two triangles a cell
+        // about two polygons a cell
         let cells = (kept.len() as f64 / 2.0).max(1.0);
         let cell = (ext.x * ext.y / cells)
             .sqrt()
@@ -68,7 +82,7 @@ impl Grid {
         self.counts.clear();
         self.counts.resize(n + 1, 0);
         for &t in &kept {
-            let (a, b) = self.cell_box(mesh.triangles[t as usize]);
+            let (a, b) = self.cell_box(mesh.corners(t as usize));
             for y in a.1..=b.1 {
                 for x in a.0..=b.0 {
                     self.counts[y * self.nx + x + 1] += 1;
@@ -83,7 +97,7 @@ impl Grid {
         self.items.clear();
         self.items.resize(self.counts[n] as usize, 0);
         for &t in &kept {
-            let (a, b) = self.cell_box(mesh.triangles[t as usize]);
+            let (a, b) = self.cell_box(mesh.corners(t as usize));
             for y in a.1..=b.1 {
                 for x in a.0..=b.0 {
                     let c = y * self.nx + x;
@@ -102,9 +116,13 @@ impl Grid {
         )
     }
 
-    fn cell_box(&self, tri: [u32; 3]) -> ((usize, usize), (usize, usize)) {
-        let [a, b, c] = tri.map(|i| self.at[i as usize]);
-        (self.cell_of(a.min(b).min(c)), self.cell_of(a.max(b).max(c)))
+    fn cell_box(&self, corners: &[u32]) -> ((usize, usize), (usize, usize)) {
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for &i in corners {
+            lo = lo.min(self.at[i as usize]);
+            hi = hi.max(self.at[i as usize]);
+        }
+        (self.cell_of(lo), self.cell_of(hi))
     }
 
     fn cell(&self, x: usize, y: usize) -> &[u32] {
@@ -117,34 +135,55 @@ impl Grid {
         (DVec2::new(p.dot(self.u), p.dot(self.w)), p.dot(self.d))
     }
 
-    /// Does the ray from `p` along d meet a triangle (of another face than `own`) more than
-    /// `eps` (m) above `p`?
-    pub fn blocked(&self, mesh: &Triangles, p: DVec3, own: u32, eps: f64) -> bool {
-        let (q, hp) = self.project(p);
+    /// Does the ray from `p` along d meet a polygon (of another face than `own`) more
+    /// than `eps` (m) above `p`?
+    pub fn blocked(&self, mesh: &Polygons, p: DVec3, own: u32, eps: f64) -> bool {
+        let (q, _) = self.project(p);
         let (x, y) = self.cell_of(q);
         self.cell(x, y).iter().any(|&t| {
-            if mesh.tri_face[t as usize] == own {
+            let t = t as usize;
+            if mesh.face[t] == own {
                 return false;
             }
-            let tri = mesh.triangles[t as usize];
-            match barycentric(tri.map(|i| self.at[i as usize]), q) {
-                Some(l) if l.iter().all(|&x| x >= 0.0) => {
-                    let h = l[0] * self.h[tri[0] as usize]
-                        + l[1] * self.h[tri[1] as usize]
-                        + l[2] * self.h[tri[2] as usize];
-                    h > hp + eps
-                }
-                _ => false,
+            let nd = mesh.normal[t].dot(self.d);
+            if nd == 0.0 {
+                return false;
             }
+            // how far along d the ray meets the polygon's plane
+            let along = mesh.normal[t].dot(mesh.point[t] - p) / nd;
+            along > eps && self.inside(mesh.corners(t), q, 0.0)
         })
     }
 
-    /// Calls `hit(t)` for every binned triangle `t` that `receives` says may take a
+    /// Is `q` inside the projected convex polygon (within `tol`, m)?
+    fn inside(&self, corners: &[u32], q: DVec2, tol: f64) -> bool {
+        let n = corners.len();
+        let (mut pos, mut neg) = (false, false);
+        for k in 0..n {
+            let a = self.at[corners[k] as usize];
+            let b = self.at[corners[(k + 1) % n] as usize];
+            let e = b - a;
+            let len = e.length();
+            if len == 0.0 {
+                continue;
+            }
+            let s = e.perp_dot(q - a) / len;
+            pos |= s > tol;
+            neg |= s < -tol;
+            if pos && neg {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Calls `hit(t)` for every binned polygon `t` that `receives` says may take a
     /// shadow and over which the segment a–b (m) passes above its plane by more than
     /// `eps`, within `tol` across d.
+    #[allow(clippy::too_many_arguments)]
     pub fn shadowed_by(
         &self,
-        mesh: &Triangles,
+        mesh: &Polygons,
         a: DVec3,
         b: DVec3,
         eps: f64,
@@ -152,8 +191,8 @@ impl Grid {
         receives: impl Fn(usize) -> bool,
         mut hit: impl FnMut(u32),
     ) {
-        let (pa, ha) = self.project(a);
-        let (pb, hb) = self.project(b);
+        let (pa, _) = self.project(a);
+        let (pb, _) = self.project(b);
         let lo = pa.min(pb) - DVec2::splat(tol);
         let hi = pa.max(pb) + DVec2::splat(tol);
         let (x0, y0) = self.cell_of(lo);
@@ -162,26 +201,24 @@ impl Grid {
         for y in y0..=y1 {
             for x in x0..=x1 {
                 for &t in self.cell(x, y) {
-                    if !receives(t as usize) {
+                    let ti = t as usize;
+                    if !receives(ti) {
                         continue;
                     }
-                    // a triangle in several cells: test it in the first cell of the
-                    // query's box that holds it
-                    if !single && !self.first_cell(mesh.triangles[t as usize], (x, y), (x0, y0)) {
+                    let corners = mesh.corners(ti);
+                    // a polygon in several cells: tested in the first cell of the query's
+                    // box that holds it
+                    if !single && !self.first_cell(corners, (x, y), (x0, y0)) {
                         continue;
                     }
-                    let tri = mesh.triangles[t as usize];
-                    let p = tri.map(|i| self.at[i as usize]);
-                    let hs = tri.map(|i| self.h[i as usize]);
-                    // heights of the segment's ends above the triangle's plane, along d
-                    let Some(la) = barycentric(p, pa) else {
+                    let n = mesh.normal[ti];
+                    let nd = n.dot(self.d);
+                    if nd == 0.0 {
                         continue;
-                    };
-                    let Some(lb) = barycentric(p, pb) else {
-                        continue;
-                    };
-                    let sa = ha - (la[0] * hs[0] + la[1] * hs[1] + la[2] * hs[2]);
-                    let sb = hb - (lb[0] * hs[0] + lb[1] * hs[1] + lb[2] * hs[2]);
+                    }
+                    // heights of the segment's ends above the polygon's plane, along d
+                    let sa = n.dot(a - mesh.point[ti]) / nd;
+                    let sb = n.dot(b - mesh.point[ti]) / nd;
                     if sa <= eps && sb <= eps {
                         continue;
                     }
@@ -192,7 +229,7 @@ impl Grid {
                     } else if sb <= eps {
                         qb = pb + (pa - pb) * ((eps - sb) / (sa - sb));
                     }
-                    if segment_meets_triangle(qa, qb, p, tol) {
+                    if self.segment_meets(qa, qb, corners, tol) {
                         hit(t);
                     }
                 }
@@ -200,82 +237,38 @@ impl Grid {
         }
     }
 
-    /// Is `(x, y)` the first cell, within the query box from `from`, of triangle `tri`?
-    fn first_cell(&self, tri: [u32; 3], (x, y): (usize, usize), from: (usize, usize)) -> bool {
-        let (a, _) = self.cell_box(tri);
-        (x, y) == (a.0.max(from.0), a.1.max(from.1))
-    }
-}
-
-/// Barycentric coordinates of `q` in the triangle `p` (None when it is degenerate).
-#[inline]
-fn barycentric(p: [DVec2; 3], q: DVec2) -> Option<[f64; 3]> {
-    let e1 = p[1] - p[0];
-    let e2 = p[2] - p[0];
-    let det = e1.perp_dot(e2);
-    let scale = e1.length_squared().max(e2.length_squared());
-    if det.abs() <= 1e-14 * scale {
-        return None;
-    }
-    let r = q - p[0];
-    let l1 = r.perp_dot(e2) / det;
-    let l2 = e1.perp_dot(r) / det;
-    Some([1.0 - l1 - l2, l1, l2])
-}
-
-/// Does segment a–b come within `tol` of triangle `p` (2D; separating axes)?
-fn segment_meets_triangle(a: DVec2, b: DVec2, p: [DVec2; 3], tol: f64) -> bool {
-    let separated = |axis: DVec2| {
-        let len = axis.length();
-        if len == 0.0 {
+    /// Does segment a–b come within `tol` of the projected convex polygon (separating
+    /// axes)?
+    fn segment_meets(&self, a: DVec2, b: DVec2, corners: &[u32], tol: f64) -> bool {
+        let separated = |axis: DVec2| {
+            let len = axis.length();
+            if len == 0.0 {
+                return false;
+            }
+            let axis = axis / len;
+            let (s0, s1) = (a.dot(axis), b.dot(axis));
+            let (smin, smax) = (s0.min(s1), s0.max(s1));
+            let (mut tmin, mut tmax) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &c in corners {
+                let t = self.at[c as usize].dot(axis);
+                tmin = tmin.min(t);
+                tmax = tmax.max(t);
+            }
+            smin > tmax + tol || tmin > smax + tol
+        };
+        let n = corners.len();
+        if separated((b - a).perp()) || separated(DVec2::X) || separated(DVec2::Y) {
             return false;
         }
-        let axis = axis / len;
-        let (s0, s1) = (a.dot(axis), b.dot(axis));
-        let (smin, smax) = (s0.min(s1), s0.max(s1));
-        let t = p.map(|v| v.dot(axis));
-        let (tmin, tmax) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
-        smin > tmax + tol || tmin > smax + tol
-    };
-    let seg = b - a;
-    !(separated(seg.perp())
-        || separated((p[1] - p[0]).perp())
-        || separated((p[2] - p[1]).perp())
-        || separated((p[0] - p[2]).perp())
-        || separated(DVec2::X)
-        || separated(DVec2::Y))
-}
+        !(0..n).any(|k| {
+            let e = self.at[corners[(k + 1) % n] as usize] - self.at[corners[k] as usize];
+            separated(e.perp())
+        })
+    }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn segments_meet_triangles_as_drawn() {
-        let t = [DVec2::ZERO, DVec2::X, DVec2::Y];
-        assert!(segment_meets_triangle(
-            DVec2::new(-1.0, 0.2),
-            DVec2::new(2.0, 0.2),
-            t,
-            0.0
-        ));
-        assert!(!segment_meets_triangle(
-            DVec2::new(0.6, 0.6),
-            DVec2::new(2.0, 2.0),
-            t,
-            0.0
-        ));
-        assert!(segment_meets_triangle(
-            DVec2::new(0.5, 0.5),
-            DVec2::new(2.0, 2.0),
-            t,
-            1e-12
-        ));
-        assert!(segment_meets_triangle(
-            DVec2::new(0.1, 0.1),
-            DVec2::new(0.2, 0.1),
-            t,
-            0.0
-        ));
+    /// Is `(x, y)` the first cell, within the query box from `from`, of triangle `tri`?
+    fn first_cell(&self, corners: &[u32], (x, y): (usize, usize), from: (usize, usize)) -> bool {
+        let (a, _) = self.cell_box(corners);
+        (x, y) == (a.0.max(from.0), a.1.max(from.1))
     }
 }

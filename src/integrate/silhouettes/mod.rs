@@ -33,13 +33,13 @@ mod topology;
 
 use crate::geometry::Faces;
 use crate::scene::Scene;
-use cells::{area_centroid, Cells};
+use cells::{area_centroid, cut_by_segments, Cells};
 use glam::{DVec2, DVec3};
-use grid::{Grid, Triangles};
+use grid::{Grid, Polygons};
 use topology::{Topology, NONE};
 
 /// Most cells a face is cut into before it is sampled instead.
-const MAX_CELLS: usize = 256;
+const MAX_CELLS: usize = 4096;
 /// Points per triangle side when a face is sampled (SAMPLES² per triangle).
 const SAMPLES: usize = 16;
 
@@ -47,7 +47,6 @@ const SAMPLES: usize = 16;
 pub struct Silhouettes {
     vertices: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
-    tri_face: Vec<u32>,
     /// Unit normal per triangle.
     normals: Vec<DVec3>,
     /// Per face: unit normal, a point of its plane, a basis of the plane, two-sidedness.
@@ -56,12 +55,20 @@ pub struct Silhouettes {
     face_basis: Vec<(DVec3, DVec3)>,
     two_sided: Vec<bool>,
     face_triangles: Vec<Vec<u32>>,
-    /// Per face: the convex polygons it is made of, in its plane's basis about
-    /// `face_point` (its outline when it is convex, however finely it is meshed; else
-    /// its triangles), CSR over `polygon_points` by `polygon_spans`.
+    /// The faces as convex polygons (a face's outline when it is convex, however finely
+    /// it is meshed; else its triangles): vertex indices (`spans` into `index`), face,
+    /// and the face's normal and a point of its plane; per face, its range of polygons.
+    poly_spans: Vec<(u32, u32)>,
+    poly_index: Vec<u32>,
+    poly_face: Vec<u32>,
+    poly_normal: Vec<DVec3>,
+    poly_point: Vec<DVec3>,
     face_polygons: Vec<(u32, u32)>,
-    polygon_spans: Vec<(u32, u32)>,
-    polygon_points: Vec<DVec2>,
+    /// Per polygon: it may block a ray whichever way it faces (an open piece's, or
+    /// two-sided).
+    poly_open: Vec<bool>,
+    /// Edges that can fold: between two faces, or on a border.
+    feature_edges: Vec<u32>,
     topo: Topology,
     /// Height (m) above a face that counts as in front of it: rounding, not geometry.
     eps: f64,
@@ -87,8 +94,11 @@ pub struct Direction {
     pairs: Vec<(u32, u32)>,
     silhouette: Vec<bool>,
     queue: Vec<u32>,
-    /// Rays cast for this direction's groups.
+    /// Rays cast for this direction's groups (one per group), and whether this epoch
+    /// asked for the direction (its groups' rays count for the epoch even when kept
+    /// from the last, so the count does not depend on which thread ran which epoch).
     rays: u64,
+    used: bool,
 }
 
 /// Per-thread buffers.
@@ -131,22 +141,28 @@ impl Silhouettes {
             .iter()
             .map(|f| crate::radiometry::earth::orthonormal_basis(f.normal))
             .collect();
-        let (mut face_polygons, mut polygon_spans, mut polygon_points) =
-            (Vec::new(), Vec::new(), Vec::new());
-        let (mut pts, mut order, mut hull) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut poly_spans, mut poly_index, mut poly_face) = (Vec::new(), Vec::new(), Vec::new());
+        let mut face_polygons = Vec::with_capacity(faces.len());
+        let (mut pts, mut ids, mut order, mut hull) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (i, f) in faces.faces.iter().enumerate() {
             let (u, w) = face_basis[i];
             let o = face_point[i];
             let to2 = |p: DVec3| DVec2::new((p - o).dot(u), (p - o).dot(w));
-            let first = polygon_spans.len() as u32;
-            let mut push = |poly: &[DVec2]| {
-                let s = polygon_points.len() as u32;
-                polygon_points.extend_from_slice(poly);
-                polygon_spans.push((s, polygon_points.len() as u32));
+            let first = poly_spans.len() as u32;
+            let mut push = |corners: &[u32]| {
+                let s = poly_index.len() as u32;
+                poly_index.extend_from_slice(corners);
+                poly_spans.push((s, poly_index.len() as u32));
+                poly_face.push(i as u32);
             };
             pts.clear();
+            ids.clear();
             for &t in &f.triangles {
-                pts.extend(mesh.triangles[t as usize].map(|v| to2(mesh.vertices[v as usize])));
+                for v in mesh.triangles[t as usize] {
+                    pts.push(to2(mesh.vertices[v as usize]));
+                    ids.push(v);
+                }
             }
             let mut convex = false;
             if f.triangles.len() > 1 {
@@ -155,14 +171,42 @@ impl Silhouettes {
                 convex = hull.len() >= 3 && (a - f.area).abs() <= 1e-9 * f.area;
             }
             if convex {
-                push(&hull);
+                let corners: Vec<u32> = hull
+                    .iter()
+                    .map(|h| {
+                        ids[pts
+                            .iter()
+                            .position(|p| p == h)
+                            .expect("a hull point is a corner")]
+                    })
+                    .collect();
+                push(&corners);
             } else {
-                for tri in pts.chunks(3) {
+                for tri in ids.chunks(3) {
                     push(tri);
                 }
             }
-            face_polygons.push((first, polygon_spans.len() as u32));
+            face_polygons.push((first, poly_spans.len() as u32));
         }
+        let poly_normal = poly_face
+            .iter()
+            .map(|&f| faces.faces[f as usize].normal)
+            .collect();
+        let poly_point = poly_face.iter().map(|&f| face_point[f as usize]).collect();
+        let mut face_open = vec![false; faces.len()];
+        for (t, &open) in topo.open.iter().enumerate() {
+            face_open[tri_face[t] as usize] |= open;
+        }
+        let poly_open = poly_face.iter().map(|&f| face_open[f as usize]).collect();
+        let feature_edges = topo
+            .edges
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| {
+                e.t1 == NONE || e.always || tri_face[e.t0 as usize] != tri_face[e.t1 as usize]
+            })
+            .map(|(i, _)| i as u32)
+            .collect();
         Silhouettes {
             vertices: mesh.vertices.clone(),
             triangles: mesh.triangles.clone(),
@@ -171,22 +215,29 @@ impl Silhouettes {
             face_point,
             face_basis,
             face_polygons,
-            polygon_spans,
-            polygon_points,
+            poly_spans,
+            poly_index,
+            poly_face,
+            poly_normal,
+            poly_point,
+            poly_open,
+            feature_edges,
             two_sided,
             face_triangles: faces.faces.iter().map(|f| f.triangles.clone()).collect(),
-            tri_face,
             topo,
             eps,
             tol: eps,
         }
     }
 
-    fn mesh(&self) -> Triangles<'_> {
-        Triangles {
+    fn mesh(&self) -> Polygons<'_> {
+        Polygons {
             vertices: &self.vertices,
-            triangles: &self.triangles,
-            tri_face: &self.tri_face,
+            spans: &self.poly_spans,
+            index: &self.poly_index,
+            face: &self.poly_face,
+            normal: &self.poly_normal,
+            point: &self.poly_point,
         }
     }
 
@@ -198,8 +249,12 @@ impl Silhouettes {
 
     /// Brings `scratch`'s direction `k` (0 view, 1 Sun, 2 Earth) to `d` for this epoch.
     pub fn prepare(&self, scratch: &mut Scratch, k: usize, d: Option<DVec3>) {
-        let Some(d) = d else { return };
         let dir = &mut scratch.dirs[k];
+        let Some(d) = d else {
+            dir.used = false;
+            return;
+        };
+        dir.used = true;
         if dir.d == Some(d) {
             return;
         }
@@ -208,9 +263,11 @@ impl Silhouettes {
         let mesh = self.mesh();
         let open = &self.topo.open;
         let facing = |t: usize| self.normals[t].dot(d) > 0.0;
-        // a closed piece blocks a ray only where the ray leaves it: through a triangle
+        // a closed piece blocks a ray only where the ray leaves it: through a face
         // facing along d
-        dir.grid.build(&mesh, d, |t| facing(t) || open[t]);
+        dir.grid.build(&mesh, d, |p| {
+            self.poly_normal[p].dot(d) > 0.0 || self.poly_open[p]
+        });
         let nf = self.face_normal.len();
         dir.status.clear();
         dir.status.extend((0..nf).map(|f| {
@@ -226,7 +283,8 @@ impl Silhouettes {
         dir.pairs.clear();
         dir.silhouette.clear();
         dir.silhouette.resize(self.topo.edges.len(), false);
-        for (i, e) in self.topo.edges.iter().enumerate() {
+        for &i in &self.feature_edges {
+            let e = &self.topo.edges[i as usize];
             let fold = if e.t1 == NONE || e.always {
                 true
             } else {
@@ -237,7 +295,7 @@ impl Silhouettes {
             if !fold {
                 continue;
             }
-            dir.silhouette[i] = true;
+            dir.silhouette[i as usize] = true;
             if !blocks {
                 continue;
             }
@@ -249,8 +307,8 @@ impl Silhouettes {
                 e.b,
                 self.eps,
                 self.tol,
-                |t| status[self.tri_face[t] as usize] != OFF,
-                |t| pairs.push((self.tri_face[t as usize], i as u32)),
+                |p| status[self.poly_face[p] as usize] != OFF,
+                |p| pairs.push((self.poly_face[p as usize], i)),
             );
         }
         dir.pairs.sort_unstable();
@@ -286,14 +344,9 @@ impl Silhouettes {
         }
     }
 
-    /// Rays cast by the last [`Silhouettes::prepare`] of each direction that built
-    /// anything (for the summary's count).
-    pub fn take_rays(&self, scratch: &mut Scratch) -> u64 {
-        scratch
-            .dirs
-            .iter_mut()
-            .map(|d| std::mem::take(&mut d.rays))
-            .sum()
+    /// Rays that deciding this epoch's groups took (for the summary's count).
+    pub fn group_rays(&self, scratch: &Scratch) -> u64 {
+        scratch.dirs.iter().filter(|d| d.used).map(|d| d.rays).sum()
     }
 
     /// Areas (m²) of `face` that are seen and sunlit, and seen and earthlit, with the
@@ -309,7 +362,7 @@ impl Silhouettes {
     ) -> (f64, f64, u64) {
         let want = [true, sun, earth];
         let status: [u8; 3] = std::array::from_fn(|k| {
-            if !want[k] || scratch.dirs[k].d.is_none() {
+            if !want[k] || !scratch.dirs[k].used {
                 CLEAR
             } else {
                 match scratch.dirs[k].status[face] {
@@ -341,11 +394,7 @@ impl Silhouettes {
             DVec2::new(r.dot(u), r.dot(w))
         };
         scratch.lines.clear();
-        for k in 0..3 {
-            if status[k] != EDGE {
-                continue;
-            }
-            let dir = &scratch.dirs[k];
+        for (dir, _) in scratch.dirs.iter().zip(status).filter(|(_, s)| *s == EDGE) {
             let d = dir.d.expect("prepared");
             let nd = n.dot(d);
             let from = dir.pairs.partition_point(|p| p.0 < face as u32);
@@ -356,24 +405,29 @@ impl Silhouettes {
                 let e = &self.topo.edges[e as usize];
                 // along d onto the face's plane
                 let onto = |x: DVec3| to2(x - d * (n.dot(x - o) / nd));
-                let (p, q) = (onto(e.a), onto(e.b));
-                scratch.lines.push((p, q - p));
+                scratch.lines.push((onto(e.a), onto(e.b)));
             }
         }
         for &(a, b) in self.topo.contacts_of(face) {
-            let (p, q) = (to2(a), to2(b));
-            scratch.lines.push((p, q - p));
+            scratch.lines.push((to2(a), to2(b)));
         }
         let cells = &mut scratch.cells;
         cells.clear();
         let (first, last) = self.face_polygons[face];
-        for &(a, b) in &self.polygon_spans[first as usize..last as usize] {
-            cells.push(self.polygon_points[a as usize..b as usize].iter().copied());
-        }
         let mut whole = true;
-        for &(p, dir) in &scratch.lines {
-            if !cells.split(p, dir, self.tol, MAX_CELLS) {
-                whole = false;
+        let mut poly = Vec::new();
+        for &(a, b) in &self.poly_spans[first as usize..last as usize] {
+            poly.clear();
+            poly.extend(
+                self.poly_index[a as usize..b as usize]
+                    .iter()
+                    .map(|&v| to2(self.vertices[v as usize])),
+            );
+            let room = MAX_CELLS.saturating_sub(cells.len());
+            whole &= cut_by_segments(&poly, &scratch.lines, self.tol, room, |c| {
+                cells.push(c.iter().copied())
+            });
+            if !whole {
                 break;
             }
         }

@@ -169,7 +169,8 @@ impl Face {
     }
 }
 
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
+/// Union–find over indices: the root of `x`'s set (halving the path on the way).
+pub(crate) fn find(parent: &mut [u32], mut x: u32) -> u32 {
     while parent[x as usize] != x {
         let p = parent[x as usize];
         parent[x as usize] = parent[p as usize];
@@ -178,7 +179,8 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
     x
 }
 
-fn union(parent: &mut [u32], a: u32, b: u32) {
+/// Union–find: joins the sets of `a` and `b` under the lesser root.
+pub(crate) fn union(parent: &mut [u32], a: u32, b: u32) {
     let ra = find(parent, a);
     let rb = find(parent, b);
     if ra != rb {

@@ -221,17 +221,17 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         sums = decided;
         for lf in &scratch.lit {
             // lit-and-seen areas, m²
-            let (a_sun, a_earth) = match &p.visibility {
+            let (a_sun, a_earth) = match (&p.visibility, &p.silhouettes) {
                 _ if p.image.is_some() => {
                     let (f_sun, f_earth) = scratch.image.fractions(lf.face as usize, lf.area);
                     (f_sun * lf.area, f_earth * lf.area)
                 }
-                None if p.silhouettes.is_some() => {
-                    let sil = p.silhouettes.as_ref().expect("checked");
+                (_, Some(sil)) => {
                     let (a_sun, a_earth, n) = sil.areas(
                         &mut scratch.silhouettes,
                         lf.face as usize,
                         lf.area,
+                        &p.faces.faces[lf.face as usize].triangles,
                         lf.sun > 0.0,
                         lf.earth > 0.0,
                     );
@@ -239,8 +239,8 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
                     (a_sun, a_earth)
                 }
                 // without rays or pixels pass 1 summed every face (`whole`)
-                None => unreachable!("no face is listed for pass 2 without visibility"),
-                Some(vis) => {
+                (None, None) => unreachable!("no face is listed for pass 2 without visibility"),
+                (Some(vis), None) => {
                     let dirs = Uncertain {
                         view: v,
                         sun: (lf.sun > 0.0).then_some(l),

@@ -65,7 +65,7 @@ pub struct Prepared<'a> {
     /// The `image` method's pixel sampler (replaces `visibility` when present).
     pub image: Option<self::image::ImageView>,
     /// The silhouette method's mesh structure (replaces `visibility` when present).
-    pub silhouettes: Option<silhouettes::Silhouettes>,
+    pub silhouettes: Option<silhouettes::Silhouettes<'a>>,
     /// Band solar irradiance at 1 AU, W/m² (the magnitude zero point).
     pub sun_band_1au: f64,
     /// What was chosen and why, for `summary.method`.

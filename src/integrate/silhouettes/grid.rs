@@ -33,7 +33,7 @@ pub struct Polygons<'a> {
     /// Per polygon: its range of `index`.
     pub spans: &'a [(u32, u32)],
     pub index: &'a [u32],
-    /// Per polygon: its face, and the face's unit normal and a point of its plane.
+    /// Per polygon: its face; per face: its unit normal and a point of its plane.
     pub face: &'a [u32],
     pub normal: &'a [DVec3],
     pub point: &'a [DVec3],
@@ -42,6 +42,12 @@ pub struct Polygons<'a> {
 impl Polygons<'_> {
     pub fn len(&self) -> usize {
         self.spans.len()
+    }
+
+    /// Polygon `i`'s plane: its face's unit normal and a point of it.
+    fn plane(&self, i: usize) -> (DVec3, DVec3) {
+        let f = self.face[i] as usize;
+        (self.normal[f], self.point[f])
     }
 
     fn corners(&self, i: usize) -> &[u32] {
@@ -145,12 +151,13 @@ impl Grid {
             if mesh.face[t] == own {
                 return false;
             }
-            let nd = mesh.normal[t].dot(self.d);
+            let (n, o) = mesh.plane(t);
+            let nd = n.dot(self.d);
             if nd == 0.0 {
                 return false;
             }
             // how far along d the ray meets the polygon's plane
-            let along = mesh.normal[t].dot(mesh.point[t] - p) / nd;
+            let along = n.dot(o - p) / nd;
             along > eps && self.inside(mesh.corners(t), q, 0.0)
         })
     }
@@ -211,14 +218,14 @@ impl Grid {
                     if !single && !self.first_cell(corners, (x, y), (x0, y0)) {
                         continue;
                     }
-                    let n = mesh.normal[ti];
+                    let (n, o) = mesh.plane(ti);
                     let nd = n.dot(self.d);
                     if nd == 0.0 {
                         continue;
                     }
                     // heights of the segment's ends above the polygon's plane, along d
-                    let sa = n.dot(a - mesh.point[ti]) / nd;
-                    let sb = n.dot(b - mesh.point[ti]) / nd;
+                    let sa = n.dot(a - o) / nd;
+                    let sb = n.dot(b - o) / nd;
                     if sa <= eps && sb <= eps {
                         continue;
                     }

@@ -31,7 +31,7 @@ mod cells;
 mod grid;
 mod topology;
 
-use crate::geometry::Faces;
+use crate::geometry::{Faces, Mesh};
 use crate::scene::Scene;
 use cells::{area_centroid, cut_by_segments, Cells};
 use glam::{DVec2, DVec3};
@@ -43,32 +43,23 @@ const MAX_CELLS: usize = 4096;
 /// Points per triangle side when a face is sampled (SAMPLES² per triangle).
 const SAMPLES: usize = 16;
 
-/// What is built once per request.
-pub struct Silhouettes {
-    vertices: Vec<DVec3>,
-    triangles: Vec<[u32; 3]>,
-    /// Unit normal per triangle.
-    normals: Vec<DVec3>,
-    /// Per face: unit normal, a point of its plane, a basis of the plane, two-sidedness.
+/// What is built once per request (the mesh's own vertices are borrowed, not copied).
+pub struct Silhouettes<'a> {
+    mesh: &'a Mesh,
+    /// Per face: unit normal, a point of its plane, a basis of the plane, two-sidedness,
+    /// and its first triangle (a point inside it decides its group).
     face_normal: Vec<DVec3>,
     face_point: Vec<DVec3>,
     face_basis: Vec<(DVec3, DVec3)>,
     two_sided: Vec<bool>,
-    face_triangles: Vec<Vec<u32>>,
+    face_first: Vec<u32>,
     /// The faces as convex polygons (a face's outline when it is convex, however finely
-    /// it is meshed; else its triangles): vertex indices (`spans` into `index`), face,
-    /// and the face's normal and a point of its plane; per face, its range of polygons.
+    /// it is meshed; else its triangles): vertex indices (`spans` into `index`) and face;
+    /// per face, its range of polygons.
     poly_spans: Vec<(u32, u32)>,
     poly_index: Vec<u32>,
     poly_face: Vec<u32>,
-    poly_normal: Vec<DVec3>,
-    poly_point: Vec<DVec3>,
     face_polygons: Vec<(u32, u32)>,
-    /// Per polygon: it may block a ray whichever way it faces (an open piece's, or
-    /// two-sided).
-    poly_open: Vec<bool>,
-    /// Edges that can fold: between two faces, or on a border.
-    feature_edges: Vec<u32>,
     topo: Topology,
     /// Height (m) above a face that counts as in front of it: rounding, not geometry.
     eps: f64,
@@ -107,10 +98,11 @@ pub struct Scratch {
     dirs: [Direction; 3],
     cells: Cells,
     lines: Vec<(DVec2, DVec2)>,
+    polygon: Vec<DVec2>,
 }
 
-impl Silhouettes {
-    pub fn build(scene: &Scene, faces: &Faces) -> Silhouettes {
+impl<'a> Silhouettes<'a> {
+    pub fn build(scene: &'a Scene, faces: &Faces) -> Silhouettes<'a> {
         let mesh = &scene.mesh;
         let nt = mesh.triangles.len();
         let mut tri_face = vec![0u32; nt];
@@ -119,18 +111,14 @@ impl Silhouettes {
                 tri_face[t as usize] = i as u32;
             }
         }
-        let normals: Vec<DVec3> = (0..nt)
-            .map(|i| mesh.area_vector(i).normalize_or_zero())
-            .collect();
         let two_sided: Vec<bool> = faces
             .faces
             .iter()
             .map(|f| scene.materials[f.material as usize].two_sided)
             .collect();
-        let tri_two_sided: Vec<bool> = tri_face.iter().map(|&f| two_sided[f as usize]).collect();
         let (_, scale) = mesh.bounding_sphere();
         let eps = 1e-9 * scale;
-        let topo = Topology::build(mesh, faces, &tri_face, &tri_two_sided, eps);
+        let topo = Topology::build(mesh, faces, &tri_face, &two_sided, eps);
         let face_point: Vec<DVec3> = faces
             .faces
             .iter()
@@ -188,29 +176,8 @@ impl Silhouettes {
             }
             face_polygons.push((first, poly_spans.len() as u32));
         }
-        let poly_normal = poly_face
-            .iter()
-            .map(|&f| faces.faces[f as usize].normal)
-            .collect();
-        let poly_point = poly_face.iter().map(|&f| face_point[f as usize]).collect();
-        let mut face_open = vec![false; faces.len()];
-        for (t, &open) in topo.open.iter().enumerate() {
-            face_open[tri_face[t] as usize] |= open;
-        }
-        let poly_open = poly_face.iter().map(|&f| face_open[f as usize]).collect();
-        let feature_edges = topo
-            .edges
-            .iter()
-            .enumerate()
-            .filter(|(_, e)| {
-                e.t1 == NONE || e.always || tri_face[e.t0 as usize] != tri_face[e.t1 as usize]
-            })
-            .map(|(i, _)| i as u32)
-            .collect();
         Silhouettes {
-            vertices: mesh.vertices.clone(),
-            triangles: mesh.triangles.clone(),
-            normals,
+            mesh,
             face_normal: faces.faces.iter().map(|f| f.normal).collect(),
             face_point,
             face_basis,
@@ -218,26 +185,22 @@ impl Silhouettes {
             poly_spans,
             poly_index,
             poly_face,
-            poly_normal,
-            poly_point,
-            poly_open,
-            feature_edges,
             two_sided,
-            face_triangles: faces.faces.iter().map(|f| f.triangles.clone()).collect(),
+            face_first: faces.faces.iter().map(|f| f.triangles[0]).collect(),
             topo,
             eps,
             tol: eps,
         }
     }
 
-    fn mesh(&self) -> Polygons<'_> {
+    fn polygons(&self) -> Polygons<'_> {
         Polygons {
-            vertices: &self.vertices,
+            vertices: &self.mesh.vertices,
             spans: &self.poly_spans,
             index: &self.poly_index,
             face: &self.poly_face,
-            normal: &self.poly_normal,
-            point: &self.poly_point,
+            normal: &self.face_normal,
+            point: &self.face_point,
         }
     }
 
@@ -260,13 +223,14 @@ impl Silhouettes {
         }
         dir.d = Some(d);
         dir.rays = 0;
-        let mesh = self.mesh();
+        let mesh = self.polygons();
         let open = &self.topo.open;
-        let facing = |t: usize| self.normals[t].dot(d) > 0.0;
+        let facing = |f: u32| self.face_normal[f as usize].dot(d) > 0.0;
         // a closed piece blocks a ray only where the ray leaves it: through a face
         // facing along d
         dir.grid.build(&mesh, d, |p| {
-            self.poly_normal[p].dot(d) > 0.0 || self.poly_open[p]
+            let f = self.poly_face[p];
+            facing(f) || open[f as usize]
         });
         let nf = self.face_normal.len();
         dir.status.clear();
@@ -283,20 +247,14 @@ impl Silhouettes {
         dir.pairs.clear();
         dir.silhouette.clear();
         dir.silhouette.resize(self.topo.edges.len(), false);
-        for &i in &self.feature_edges {
-            let e = &self.topo.edges[i as usize];
-            let fold = if e.t1 == NONE || e.always {
-                true
-            } else {
-                facing(e.t0 as usize) != facing(e.t1 as usize)
-            };
-            let blocks = (facing(e.t0 as usize) || open[e.t0 as usize])
-                || (e.t1 != NONE && (facing(e.t1 as usize) || open[e.t1 as usize]));
+        for (i, e) in self.topo.edges.iter().enumerate() {
+            let fold = e.f1 == NONE || e.always || facing(e.f0) != facing(e.f1);
             if !fold {
                 continue;
             }
-            dir.silhouette[i as usize] = true;
-            if !blocks {
+            dir.silhouette[i] = true;
+            let blocks = |f: u32| f != NONE && (facing(f) || open[f as usize]);
+            if !(blocks(e.f0) || blocks(e.f1)) {
                 continue;
             }
             let status = &dir.status;
@@ -308,7 +266,7 @@ impl Silhouettes {
                 self.eps,
                 self.tol,
                 |p| status[self.poly_face[p] as usize] != OFF,
-                |p| pairs.push((self.poly_face[p as usize], i)),
+                |p| pairs.push((self.poly_face[p as usize], i as u32)),
             );
         }
         dir.pairs.sort_unstable();
@@ -321,8 +279,7 @@ impl Silhouettes {
             if dir.status[start] != UNSET {
                 continue;
             }
-            let t0 = self.face_triangles[start][0] as usize;
-            let [a, b, c] = self.triangles[t0].map(|i| self.vertices[i as usize]);
+            let [a, b, c] = self.mesh.corners(self.face_first[start] as usize);
             let p = (a + b + c) / 3.0;
             dir.rays += 1;
             let s = if dir.grid.blocked(&mesh, p, start as u32, self.eps) {
@@ -349,14 +306,16 @@ impl Silhouettes {
         scratch.dirs.iter().filter(|d| d.used).map(|d| d.rays).sum()
     }
 
-    /// Areas (m²) of `face` that are seen and sunlit, and seen and earthlit, with the
-    /// directions prepared for this epoch; `sun` and `earth` say which are wanted; plus
-    /// the rays cast.
+    /// Areas (m²) of `face` (area `area`, m², made of the mesh's `triangles`) that are
+    /// seen and sunlit, and seen and earthlit, with the directions prepared for this epoch;
+    /// `sun` and `earth` say which are wanted; plus the rays cast.
+    #[allow(clippy::too_many_arguments)]
     pub fn areas(
         &self,
         scratch: &mut Scratch,
         face: usize,
         area: f64,
+        triangles: &[u32],
         sun: bool,
         earth: bool,
     ) -> (f64, f64, u64) {
@@ -415,23 +374,23 @@ impl Silhouettes {
         cells.clear();
         let (first, last) = self.face_polygons[face];
         let mut whole = true;
-        let mut poly = Vec::new();
+        let poly = &mut scratch.polygon;
         for &(a, b) in &self.poly_spans[first as usize..last as usize] {
             poly.clear();
             poly.extend(
                 self.poly_index[a as usize..b as usize]
                     .iter()
-                    .map(|&v| to2(self.vertices[v as usize])),
+                    .map(|&v| to2(self.mesh.vertices[v as usize])),
             );
             let room = MAX_CELLS.saturating_sub(cells.len());
-            whole &= cut_by_segments(&poly, &scratch.lines, self.tol, room, |c| {
+            whole &= cut_by_segments(poly, &scratch.lines, self.tol, room, |c| {
                 cells.push(c.iter().copied())
             });
             if !whole {
                 break;
             }
         }
-        let mesh = self.mesh();
+        let mesh = self.polygons();
         let dirs = &scratch.dirs;
         let mut rays = 0u64;
         // (seen and sunlit, seen and earthlit) at a point of the face
@@ -465,18 +424,18 @@ impl Silhouettes {
             }
         } else {
             // too many shadows for cells: a fixed grid of points on each triangle
-            for &t in &self.face_triangles[face] {
-                let [p0, p1, p2] = self.triangles[t as usize].map(|i| self.vertices[i as usize]);
+            for &t in triangles {
+                let [p0, p1, p2] = self.mesh.corners(t as usize);
                 let at = 0.5 * (p1 - p0).cross(p2 - p0).length();
                 let per = at / (SAMPLES * SAMPLES) as f64;
                 for i in 0..SAMPLES {
                     for j in 0..SAMPLES - i {
-                        // the sub-triangles' centroids: upward ones, then downward ones
-                        let mut sub = vec![(i as f64 + 1.0 / 3.0, j as f64 + 1.0 / 3.0)];
-                        if j + 1 < SAMPLES - i {
-                            sub.push((i as f64 + 2.0 / 3.0, j as f64 + 2.0 / 3.0));
-                        }
-                        for (x, y) in sub {
+                        // the sub-triangles' centroids: the upward one, and the
+                        // downward one beside it where there is one
+                        let up = (i as f64 + 1.0 / 3.0, j as f64 + 1.0 / 3.0);
+                        let down = (i as f64 + 2.0 / 3.0, j as f64 + 2.0 / 3.0);
+                        let sub = [Some(up), (j + 1 < SAMPLES - i).then_some(down)];
+                        for (x, y) in sub.into_iter().flatten() {
                             let (bx, by) = (x / SAMPLES as f64, y / SAMPLES as f64);
                             let pt = p0 + (p1 - p0) * bx + (p2 - p0) * by;
                             let (s, e) = decide(pt);

@@ -9,21 +9,23 @@
 //! d and is found per epoch ([`super::grid`]); the second is fixed in the body frame and
 //! found here.
 
+use crate::geometry::faces::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
 
 /// No triangle (a border edge's missing second side).
 pub const NONE: u32 = u32::MAX;
 
-/// One edge of the welded mesh.
+/// An edge of the welded mesh that can fold along some direction: between two faces, or
+/// on a border (an edge inside a face, between coplanar triangles, never does).
 #[derive(Debug, Clone, Copy)]
 pub struct Edge {
     /// Its ends, m.
     pub a: DVec3,
     pub b: DVec3,
-    /// The triangles on either side; `t1` is [`NONE`] on a border.
-    pub t0: u32,
-    pub t1: u32,
+    /// The faces on either side; `f1` is [`NONE`] on a border.
+    pub f0: u32,
+    pub f1: u32,
     /// The two triangles run along the edge the same way (their normals disagree about
     /// which side is out), or more than two triangles meet here: the edge counts as a
     /// fold along every direction.
@@ -37,7 +39,7 @@ pub struct Topology {
     /// ..adjacent_at[f + 1]`).
     pub adjacent_at: Vec<u32>,
     pub adjacent: Vec<(u32, u32)>,
-    /// Per triangle: its piece is open (a border, a non-manifold or inconsistently wound
+    /// Per face: its piece is open (a border, a non-manifold or inconsistently wound
     /// edge) or its material is two-sided, so it may block a ray whichever way it faces.
     pub open: Vec<bool>,
     /// Per face: segments where another piece of the mesh meets the face (m, in the
@@ -54,18 +56,23 @@ impl Topology {
         two_sided: &[bool],
         tol: f64,
     ) -> Topology {
+        // `two_sided` is per face
         let nt = mesh.triangles.len();
+        // the welded edges that merging faces sorted, or sorted here when it did not
+        let own;
         let (welded, sorted) = if faces.edges.is_empty() {
-            mesh.welded_edges()
+            own = mesh.welded_edges();
+            (&own.0, &own.1)
         } else {
-            (faces.welded.clone(), faces.edges.clone())
+            (&faces.welded, &faces.edges)
         };
         // pieces by union-find over shared edges; a piece is open when any edge of it is
         // not shared by exactly two triangles wound the opposite ways
         let mut parent: Vec<u32> = (0..nt as u32).collect();
         let mut open_root = vec![false; nt];
-        let mut edges = Vec::with_capacity(sorted.len() / 2 + 1);
+        let mut edges = Vec::new();
         let mut bad_triangles = Vec::new();
+        let face = |t: u32| tri_face[t as usize];
         for shared in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
             let (wa, wb, t0) = shared[0];
             let a = mesh.vertices[wa as usize];
@@ -82,8 +89,8 @@ impl Topology {
                     edges.push(Edge {
                         a,
                         b,
-                        t0,
-                        t1: NONE,
+                        f0: face(t0),
+                        f1: NONE,
                         always: true,
                     });
                 }
@@ -94,13 +101,15 @@ impl Topology {
                     if flipped {
                         bad_triangles.extend([t0, t1]);
                     }
-                    edges.push(Edge {
-                        a,
-                        b,
-                        t0,
-                        t1,
-                        always: flipped,
-                    });
+                    if flipped || face(t0) != face(t1) {
+                        edges.push(Edge {
+                            a,
+                            b,
+                            f0: face(t0),
+                            f1: face(t1),
+                            always: flipped,
+                        });
+                    }
                 }
                 _ => {
                     for w in shared.windows(2) {
@@ -113,8 +122,8 @@ impl Topology {
                         edges.push(Edge {
                             a,
                             b,
-                            t0: w[0].2,
-                            t1: w[1].2,
+                            f0: face(w[0].2),
+                            f1: face(w[1].2),
                             always: true,
                         });
                     }
@@ -125,25 +134,23 @@ impl Topology {
             let r = find(&mut parent, t);
             open_root[r as usize] = true;
         }
-        let open: Vec<bool> = (0..nt as u32)
-            .map(|t| open_root[find(&mut parent, t) as usize] || two_sided[t as usize])
-            .collect();
+        let mut open = two_sided.to_vec();
+        for t in 0..nt as u32 {
+            open[face(t) as usize] |= open_root[find(&mut parent, t) as usize];
+        }
 
         let nf = faces.len();
         let mut with_edge: Vec<(u32, (u32, u32))> = Vec::new();
         for (i, e) in edges.iter().enumerate() {
-            if e.t1 == NONE {
-                continue;
-            }
-            let (f, g) = (tri_face[e.t0 as usize], tri_face[e.t1 as usize]);
-            if f != g {
+            let (f, g) = (e.f0, e.f1);
+            if g != NONE && f != g {
                 with_edge.push((f, (g, i as u32)));
                 with_edge.push((g, (f, i as u32)));
             }
         }
         let (adjacent_at, adjacent) = csr_of(nf, with_edge);
 
-        let contacts = contact_segments(mesh, &welded, tri_face, tol);
+        let contacts = contact_segments(mesh, welded, tri_face, tol);
         let (contacts_at, contacts) = csr_of(nf, contacts);
         Topology {
             edges,
@@ -177,21 +184,6 @@ fn csr_of<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
         at[i + 1] += at[i];
     }
     (at, items.into_iter().map(|x| x.1).collect())
-}
-
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        parent[x as usize] = parent[parent[x as usize] as usize];
-        x = parent[x as usize];
-    }
-    x
-}
-
-fn union(parent: &mut [u32], a: u32, b: u32) {
-    let (ra, rb) = (find(parent, a), find(parent, b));
-    if ra != rb {
-        parent[ra.max(rb) as usize] = ra.min(rb);
-    }
 }
 
 /// Segments (m) where triangles of different faces that share no vertex meet: each is

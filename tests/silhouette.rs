@@ -60,18 +60,7 @@ fn worst(a: &Response, b: &Response) -> f64 {
 /// 1e-7 of the signal. 1e-6 of the curve's maximum leaves room for both.
 const EXACT: f64 = 1e-6;
 
-/// Known defect, open: on the dish-sat's tumbling curve one epoch (index 39 of
-/// scenes/dish-sat.json, coarse) comes out 3.1e-4 of the curve's maximum below exact
-/// clipping, which the image method at 2048 px confirms (within 8.6e-5). The bound for
-/// that class is the accuracy target (2e-3) until the cause is found; every other
-/// class and every stability case holds the exact bound.
-const DISH_SAT_KNOWN: f64 = 2e-3;
-
 fn agree(class: &str, epochs: Vec<Value>) -> (Response, Response) {
-    agree_within(class, epochs, EXACT)
-}
-
-fn agree_within(class: &str, epochs: Vec<Value>, bound: f64) -> (Response, Response) {
     let s = run(&coarse(
         class,
         epochs.clone(),
@@ -84,7 +73,7 @@ fn agree_within(class: &str, epochs: Vec<Value>, bound: f64) -> (Response, Respo
     ));
     let w = worst(&s, &a);
     assert!(
-        w <= bound,
+        w <= EXACT,
         "{class}: silhouette vs adaptive differ by {w:e} of the maximum"
     );
     (s, a)
@@ -97,12 +86,7 @@ fn every_class_matches_exact_clipping_over_its_tumbling_light_curve() {
         let all = v["epochs"].as_array().expect("epochs");
         // every 13th epoch: the tumble's attitudes and the whole phase sweep
         let epochs: Vec<Value> = all.iter().step_by(13).cloned().collect();
-        let bound = if class == "dish-sat" {
-            DISH_SAT_KNOWN
-        } else {
-            EXACT
-        };
-        let (s, _) = agree_within(class, epochs, bound);
+        let (s, _) = agree(class, epochs);
         assert!(
             s.summary.method.contains("silhouette"),
             "{}",

@@ -164,7 +164,9 @@ fn crosses(c: &[DVec2], (p, q): (DVec2, DVec2), tol: f64) -> bool {
         let (a, b) = (c[k], c[(k + 1) % n]);
         let e = b - a;
         let el = e.length();
-        if el == 0.0 {
+        // a split can leave two corners a rounding apart: their edge has no direction
+        // to speak of, and a half-plane through it would cut the segment at random
+        if el <= tol {
             continue;
         }
         let normal = e.perp() / el;
@@ -234,6 +236,26 @@ mod tests {
         assert_eq!(c.len(), 4);
         // the cap on cells
         assert!(!c.split(DVec2::new(0.3, 0.0), DVec2::new(1.0, 1.0), 1e-12, 4));
+    }
+
+    #[test]
+    fn corners_a_rounding_apart_do_not_hide_a_crossing_segment() {
+        // A split can leave the corner (1, 0.5) twice, a rounding apart along a direction
+        // of their own, (-1, -0.5): taken as an edge, its half-plane y ≥ x/2 would cut
+        // away the segment along y = 0.2, which crosses the square's lower right.
+        let poly = [
+            DVec2::ZERO,
+            DVec2::new(1.0, 0.0),
+            DVec2::new(1.0, 0.5),
+            DVec2::new(1.0 - 2e-16, 0.5 - 1e-16),
+            DVec2::ONE,
+            DVec2::Y,
+        ];
+        let seg = (DVec2::new(0.6, 0.2), DVec2::new(2.0, 0.2));
+        assert!(crosses(&poly, seg, 1e-12));
+        let mut n = 0;
+        assert!(cut_by_segments(&poly, &[seg], 1e-12, 64, |_| n += 1));
+        assert_eq!(n, 2);
     }
 
     #[test]

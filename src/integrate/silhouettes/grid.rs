@@ -20,7 +20,9 @@ pub struct Grid {
     inv_cell: f64,
     nx: usize,
     ny: usize,
-    /// Triangles per cell (CSR).
+    /// Per polygon binned: its box across d (m).
+    boxes: Vec<(DVec2, DVec2)>,
+    /// Polygons per cell (CSR).
     start: Vec<u32>,
     items: Vec<u32>,
     counts: Vec<u32>,
@@ -75,6 +77,19 @@ impl Grid {
         let kept: Vec<u32> = (0..mesh.len() as u32)
             .filter(|&t| keep(t as usize))
             .collect();
+        self.boxes.clear();
+        self.boxes.resize(
+            mesh.len(),
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::INFINITY)),
+        );
+        for &t in &kept {
+            let (mut a, mut b) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            for &i in mesh.corners(t as usize) {
+                a = a.min(self.at[i as usize]);
+                b = b.max(self.at[i as usize]);
+            }
+            self.boxes[t as usize] = (a, b);
+        }
         // about two polygons a cell
         let cells = (kept.len() as f64 / 2.0).max(1.0);
         let cell = (ext.x * ext.y / cells)
@@ -88,7 +103,7 @@ impl Grid {
         self.counts.clear();
         self.counts.resize(n + 1, 0);
         for &t in &kept {
-            let (a, b) = self.cell_box(mesh.corners(t as usize));
+            let (a, b) = self.cell_box(t as usize);
             for y in a.1..=b.1 {
                 for x in a.0..=b.0 {
                     self.counts[y * self.nx + x + 1] += 1;
@@ -103,7 +118,7 @@ impl Grid {
         self.items.clear();
         self.items.resize(self.counts[n] as usize, 0);
         for &t in &kept {
-            let (a, b) = self.cell_box(mesh.corners(t as usize));
+            let (a, b) = self.cell_box(t as usize);
             for y in a.1..=b.1 {
                 for x in a.0..=b.0 {
                     let c = y * self.nx + x;
@@ -122,12 +137,9 @@ impl Grid {
         )
     }
 
-    fn cell_box(&self, corners: &[u32]) -> ((usize, usize), (usize, usize)) {
-        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for &i in corners {
-            lo = lo.min(self.at[i as usize]);
-            hi = hi.max(self.at[i as usize]);
-        }
+    /// The cells binned polygon `t`'s box spans (first, last).
+    fn cell_box(&self, t: usize) -> ((usize, usize), (usize, usize)) {
+        let (lo, hi) = self.boxes[t];
         (self.cell_of(lo), self.cell_of(hi))
     }
 
@@ -148,7 +160,8 @@ impl Grid {
         let (x, y) = self.cell_of(q);
         self.cell(x, y).iter().any(|&t| {
             let t = t as usize;
-            if mesh.face[t] == own {
+            let (lo, hi) = self.boxes[t];
+            if q.cmplt(lo).any() || q.cmpgt(hi).any() || mesh.face[t] == own {
                 return false;
             }
             let (n, o) = mesh.plane(t);
@@ -158,25 +171,20 @@ impl Grid {
             }
             // how far along d the ray meets the polygon's plane
             let along = n.dot(o - p) / nd;
-            along > eps && self.inside(mesh.corners(t), q, 0.0)
+            along > eps && self.inside(mesh.corners(t), q)
         })
     }
 
-    /// Is `q` inside the projected convex polygon (within `tol`, m)?
-    fn inside(&self, corners: &[u32], q: DVec2, tol: f64) -> bool {
+    /// Is `q` inside (or on) the projected convex polygon?
+    fn inside(&self, corners: &[u32], q: DVec2) -> bool {
         let n = corners.len();
         let (mut pos, mut neg) = (false, false);
         for k in 0..n {
             let a = self.at[corners[k] as usize];
             let b = self.at[corners[(k + 1) % n] as usize];
-            let e = b - a;
-            let len = e.length();
-            if len == 0.0 {
-                continue;
-            }
-            let s = e.perp_dot(q - a) / len;
-            pos |= s > tol;
-            neg |= s < -tol;
+            let s = (b - a).perp_dot(q - a);
+            pos |= s > 0.0;
+            neg |= s < 0.0;
             if pos && neg {
                 return false;
             }
@@ -212,12 +220,16 @@ impl Grid {
                     if !receives(ti) {
                         continue;
                     }
-                    let corners = mesh.corners(ti);
-                    // a polygon in several cells: tested in the first cell of the query's
-                    // box that holds it
-                    if !single && !self.first_cell(corners, (x, y), (x0, y0)) {
+                    let (plo, phi) = self.boxes[ti];
+                    if plo.cmpgt(hi).any() || phi.cmplt(lo).any() {
                         continue;
                     }
+                    // a polygon in several cells: tested in the first cell of the query's
+                    // box that holds it
+                    if !single && !self.first_cell(ti, (x, y), (x0, y0)) {
+                        continue;
+                    }
+                    let corners = mesh.corners(ti);
                     let (n, o) = mesh.plane(ti);
                     let nd = n.dot(self.d);
                     if nd == 0.0 {
@@ -274,8 +286,8 @@ impl Grid {
     }
 
     /// Is `(x, y)` the first cell, within the query box from `from`, of triangle `tri`?
-    fn first_cell(&self, corners: &[u32], (x, y): (usize, usize), from: (usize, usize)) -> bool {
-        let (a, _) = self.cell_box(corners);
+    fn first_cell(&self, t: usize, (x, y): (usize, usize), from: (usize, usize)) -> bool {
+        let (a, _) = self.cell_box(t);
         (x, y) == (a.0.max(from.0), a.1.max(from.1))
     }
 }

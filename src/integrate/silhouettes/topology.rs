@@ -12,6 +12,7 @@
 use crate::geometry::faces::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// No triangle (a border edge's missing second side).
 pub const NONE: u32 = u32::MAX;
@@ -217,8 +218,14 @@ fn contact_segments(
     let mid = sizes.len() / 2;
     sizes.select_nth_unstable_by(mid, f64::total_cmp);
     let extent = (hi - lo).max(DVec3::splat(tol));
-    let cell = sizes[mid].max(extent.max_element() / 256.0).max(tol);
-    let dims = ((extent / cell).ceil().as_uvec3()).max(glam::UVec3::ONE);
+    // at most ~4M cells (the bins' offsets), and at most 1024 along an axis
+    let volume = extent.x * extent.y * extent.z;
+    let cell = sizes[mid]
+        .max((volume / 4.0e6).cbrt())
+        .max(extent.max_element() / 1024.0)
+        .max(tol);
+    let dims =
+        ((extent / cell).ceil().as_uvec3()).clamp(glam::UVec3::ONE, glam::UVec3::splat(1025));
     let index = |p: DVec3| {
         let q = ((p - lo) / cell).floor();
         glam::UVec3::new(
@@ -227,47 +234,81 @@ fn contact_segments(
             (q.z.max(0.0) as u32).min(dims.z - 1),
         )
     };
-    let mut entries: Vec<(u64, u32)> = Vec::new();
-    for (t, b) in boxes.iter().enumerate() {
-        let (a, z) = (index(b.0), index(b.1));
-        for x in a.x..=z.x {
-            for y in a.y..=z.y {
-                for w in a.z..=z.z {
-                    let key = (x as u64) | ((y as u64) << 21) | ((w as u64) << 42);
-                    entries.push((key, t as u32));
-                }
-            }
+    let linear = |c: glam::UVec3| (c.x + dims.x * (c.y + dims.y * c.z)) as usize;
+    let cells_of = |t: usize| {
+        let (a, z) = (index(boxes[t].0), index(boxes[t].1));
+        (a.z..=z.z).flat_map(move |w| {
+            (a.y..=z.y).flat_map(move |y| (a.x..=z.x).map(move |x| glam::UVec3::new(x, y, w)))
+        })
+    };
+    // the triangles binned by cell (a counting sort: no comparison sort of the entries)
+    let n_cells = (dims.x * dims.y * dims.z) as usize;
+    let mut start = vec![0u32; n_cells + 1];
+    for t in 0..nt {
+        for c in cells_of(t) {
+            start[linear(c) + 1] += 1;
         }
     }
-    entries.sort_unstable();
-    let mut candidates: Vec<(u32, u32)> = Vec::new();
-    for cell in entries.chunk_by(|x, y| x.0 == y.0) {
-        for (i, &(_, s)) in cell.iter().enumerate() {
-            for &(_, t) in &cell[i + 1..] {
-                if tri_face[s as usize] == tri_face[t as usize] {
-                    continue;
-                }
-                let (bs, bt) = (boxes[s as usize], boxes[t as usize]);
-                if bs.0.cmpgt(bt.1).any() || bt.0.cmpgt(bs.1).any() {
-                    continue;
-                }
-                let (ts, tt) = (mesh.triangles[s as usize], mesh.triangles[t as usize]);
-                let shares = ts
-                    .iter()
-                    .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
-                if !shares {
-                    candidates.push((s.min(t), s.max(t)));
-                }
-            }
+    for i in 0..n_cells {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut binned = vec![0u32; start[n_cells] as usize];
+    for t in 0..nt {
+        for c in cells_of(t) {
+            let k = linear(c);
+            binned[fill[k] as usize] = t as u32;
+            fill[k] += 1;
         }
     }
-    candidates.sort_unstable();
-    candidates.dedup();
+    // per triangle s, the later triangles t sharing a cell with it (each once), tested in
+    // order of t: the pairs (s, t) in the order a sort of them would give
+    let per_triangle: Vec<Vec<(u32, (DVec3, DVec3))>> = (0..nt)
+        .into_par_iter()
+        .map_init(
+            || (vec![u32::MAX; nt], Vec::new()),
+            |(stamp, near), s| {
+                near.clear();
+                for c in cells_of(s) {
+                    let k = linear(c);
+                    for &t in &binned[start[k] as usize..start[k + 1] as usize] {
+                        if t as usize > s && stamp[t as usize] != s as u32 {
+                            stamp[t as usize] = s as u32;
+                            near.push(t);
+                        }
+                    }
+                }
+                near.sort_unstable();
+                let mut found = Vec::new();
+                for &t in near.iter() {
+                    let t = t as usize;
+                    if tri_face[s] == tri_face[t] {
+                        continue;
+                    }
+                    let (bs, bt) = (boxes[s], boxes[t]);
+                    if bs.0.cmpgt(bt.1).any() || bt.0.cmpgt(bs.1).any() {
+                        continue;
+                    }
+                    let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
+                    let shares = ts
+                        .iter()
+                        .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
+                    if shares {
+                        continue;
+                    }
+                    if let Some(seg) = meet(&corners[s], &corners[t], tol) {
+                        found.push((t as u32, seg));
+                    }
+                }
+                found
+            },
+        )
+        .collect();
     let mut out = Vec::new();
-    for (s, t) in candidates {
-        if let Some((p, q)) = meet(&corners[s as usize], &corners[t as usize], tol) {
-            out.push((tri_face[s as usize], (p, q)));
-            out.push((tri_face[t as usize], (p, q)));
+    for (s, found) in per_triangle.into_iter().enumerate() {
+        for (t, seg) in found {
+            out.push((tri_face[s], seg));
+            out.push((tri_face[t as usize], seg));
         }
     }
     out

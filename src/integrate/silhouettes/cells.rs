@@ -106,13 +106,18 @@ pub fn cut_by_segments(
     max: usize,
     mut cell: impl FnMut(&[DVec2]),
 ) -> bool {
-    let mut stack: Vec<(Vec<DVec2>, Vec<u32>)> =
-        vec![(poly.to_vec(), (0..segs.len() as u32).collect())];
+    // Each piece carries the segments that may cross it, and whether each is known to
+    // (it crossed the parent and lies wholly on this piece's side of the cut): those are
+    // not tested again, so a chain of k segments costs k splits, not k² tests.
+    let mut stack: Vec<(Vec<DVec2>, Vec<(u32, bool)>)> = vec![(
+        poly.to_vec(),
+        (0..segs.len() as u32).map(|i| (i, false)).collect(),
+    )];
     let mut made = 0usize;
     let mut pieces = Cells::default();
     while let Some((c, mut cand)) = stack.pop() {
-        cand.retain(|&i| crosses(&c, segs[i as usize], tol));
-        let Some(&first) = cand.first() else {
+        cand.retain(|&(i, known)| known || crosses(&c, segs[i as usize], tol));
+        let Some(&(first, _)) = cand.first() else {
             made += 1;
             if made > max {
                 return false;
@@ -124,14 +129,29 @@ pub fn cut_by_segments(
         pieces.clear();
         pieces.push(c.iter().copied());
         pieces.split(p, q - p, tol, usize::MAX);
-        let rest: Vec<u32> = cand[1..].to_vec();
         if pieces.len() < 2 {
+            let rest = cand[1..].iter().map(|&(i, _)| (i, false)).collect();
             stack.push((c, rest));
             continue;
         }
-        for i in 0..pieces.len() {
-            stack.push((pieces.cell(i).to_vec(), rest.clone()));
+        // the pieces lie on either side of the line (left first): a segment wholly beyond
+        // it on one side crosses that piece (it crossed this one) and not the other
+        let dir = (q - p).normalize_or_zero();
+        let (mut left, mut right) = (Vec::new(), Vec::new());
+        for &(i, _) in &cand[1..] {
+            let (a, b) = segs[i as usize];
+            let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
+            if sa.min(sb) > 2.0 * tol {
+                left.push((i, true));
+            } else if sa.max(sb) < -2.0 * tol {
+                right.push((i, true));
+            } else {
+                left.push((i, false));
+                right.push((i, false));
+            }
         }
+        stack.push((pieces.cell(0).to_vec(), left));
+        stack.push((pieces.cell(1).to_vec(), right));
     }
     true
 }

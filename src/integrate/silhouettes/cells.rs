@@ -95,6 +95,10 @@ impl Cells {
     }
 }
 
+/// A convex piece still to cut, with the segments that may cross it (index, and whether
+/// it is known to cross).
+type Piece = (Vec<DVec2>, Vec<(u32, bool)>);
+
 /// Cuts convex polygon `poly` along the segments `segs` (p, q) into cells that no
 /// segment crosses: a cell is split along a segment's line only where the segment itself
 /// crosses it, so k segments make about k cells, not k². Calls `cell` with each; false
@@ -109,7 +113,7 @@ pub fn cut_by_segments(
     // Each piece carries the segments that may cross it, and whether each is known to
     // (it crossed the parent and lies wholly on this piece's side of the cut): those are
     // not tested again, so a chain of k segments costs k splits, not k² tests.
-    let mut stack: Vec<(Vec<DVec2>, Vec<(u32, bool)>)> = vec![(
+    let mut stack: Vec<Piece> = vec![(
         poly.to_vec(),
         (0..segs.len() as u32).map(|i| (i, false)).collect(),
     )];

@@ -49,6 +49,13 @@ struct Args {
     /// Write the table as CSV.
     #[arg(long)]
     out: Option<std::path::PathBuf>,
+    /// Integration method for every request (default: the request's own, else auto).
+    #[arg(long)]
+    method: Option<String>,
+    /// Write each row's light curve (t, irradiance, sun, earthshine in W/m²) to
+    /// DIR/CLASS-DETAIL.csv, to compare methods or builds epoch by epoch.
+    #[arg(long, value_name = "DIR")]
+    curves: Option<std::path::PathBuf>,
 }
 
 struct Row {
@@ -76,6 +83,9 @@ fn load(args: &Args, request: &str, detail: &str) -> Result<Scene, String> {
     if detail != "as-is" {
         mesh.insert("detail".into(), detail.into());
     }
+    if let Some(m) = &args.method {
+        json["method"] = m.as_str().into();
+    }
     if let (Some(n), Some(epochs)) = (args.epochs, json.get_mut("epochs")) {
         if let Some(list) = epochs.as_array_mut() {
             list.truncate(n);
@@ -83,6 +93,21 @@ fn load(args: &Args, request: &str, detail: &str) -> Result<Scene, String> {
     }
     Scene::from_json(&json.to_string(), &Limits::unlimited())
         .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// One light curve as CSV, full precision.
+fn write_curve(path: &std::path::Path, epochs: &[glint::scene::response::EpochResult]) {
+    let mut csv = String::from("t,irradiance_w_m2,sun_w_m2,earthshine_w_m2\n");
+    for e in epochs {
+        csv += &format!(
+            "{},{:e},{:e},{:e}\n",
+            e.t, e.irradiance_w_m2, e.sun_w_m2, e.earthshine_w_m2
+        );
+    }
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).expect("curves directory");
+    }
+    std::fs::write(path, csv).expect("curve written");
 }
 
 fn main() {
@@ -131,6 +156,9 @@ fn main() {
                 let t = Instant::now();
                 let r = glint::simulate(&scene);
                 times.push(t.elapsed().as_secs_f64() * 1e3);
+                if let Some(dir) = &args.curves {
+                    write_curve(&dir.join(format!("{class}-{detail}.csv")), &r.epochs);
+                }
                 summary = Some(r.summary);
             }
             let s = summary.expect("at least one run");

@@ -5,7 +5,8 @@
 //! can see out changes only where
 //! - the shadow of a *silhouette* edge falls: an edge whose two triangles face opposite
 //!   ways along d, or an open surface's border (the outline of whatever lies in front,
-//!   seen along d, is made of these), or
+//!   seen along d, is made of these); a *valley* of a closed piece (the surface turning
+//!   inward) never counts: its shadow runs inside the solid on both sides, or
 //! - another piece of the mesh meets the face's plane inside the face (a *contact*: a
 //!   boom's foot on the bus), fixed in the body frame ([`topology`]).
 //!
@@ -248,7 +249,7 @@ impl<'a> Silhouettes<'a> {
         dir.silhouette.clear();
         dir.silhouette.resize(self.topo.edges.len(), false);
         for (i, e) in self.topo.edges.iter().enumerate() {
-            let fold = e.f1 == NONE || e.always || facing(e.f0) != facing(e.f1);
+            let fold = e.f1 == NONE || e.always || (!e.valley && facing(e.f0) != facing(e.f1));
             if !fold {
                 continue;
             }

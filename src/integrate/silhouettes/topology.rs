@@ -31,6 +31,10 @@ pub struct Edge {
     /// which side is out), or more than two triangles meet here: the edge counts as a
     /// fold along every direction.
     pub always: bool,
+    /// A valley of a closed, outward-facing piece: the surface turns inward across it,
+    /// so along any direction its shadow runs inside the solid on both sides of the
+    /// edge and never bounds what a face sees (only ridges and borders do).
+    pub valley: bool,
 }
 
 /// The surface's structure (see the module doc).
@@ -93,6 +97,7 @@ impl Topology {
                         f0: face(t0),
                         f1: NONE,
                         always: true,
+                        valley: false,
                     });
                 }
                 2 => {
@@ -103,12 +108,22 @@ impl Topology {
                         bad_triangles.extend([t0, t1]);
                     }
                     if flipped || face(t0) != face(t1) {
+                        // t1's corner off the edge, above t0's plane: the surface turns
+                        // inward here (checked against the piece below)
+                        let [p0, p1, p2] = mesh.corners(t0 as usize);
+                        let n0 = (p1 - p0).cross(p2 - p0);
+                        let off = mesh.triangles[t1 as usize]
+                            .iter()
+                            .map(|&v| mesh.vertices[v as usize])
+                            .map(|v| n0.dot(v - a))
+                            .fold(0.0, |m: f64, h| if h.abs() > m.abs() { h } else { m });
                         edges.push(Edge {
                             a,
                             b,
                             f0: face(t0),
                             f1: face(t1),
                             always: flipped,
+                            valley: !flipped && off > tol * n0.length(),
                         });
                     }
                 }
@@ -126,6 +141,7 @@ impl Topology {
                             f0: face(w[0].2),
                             f1: face(w[1].2),
                             always: true,
+                            valley: false,
                         });
                     }
                 }
@@ -138,6 +154,20 @@ impl Topology {
         let mut open = two_sided.to_vec();
         for t in 0..nt as u32 {
             open[face(t) as usize] |= open_root[find(&mut parent, t) as usize];
+        }
+        // a valley bounds nothing only on a closed piece whose normals point out of its
+        // solid (positive volume) and whose faces are one-sided
+        let mut volume = vec![0.0f64; nt];
+        for t in 0..nt as u32 {
+            let [p0, p1, p2] = mesh.corners(t as usize);
+            volume[find(&mut parent, t) as usize] += p0.dot(p1.cross(p2));
+        }
+        let solid_face = |f: u32, parent: &mut Vec<u32>| {
+            let t = faces.faces[f as usize].triangles[0];
+            !open[f as usize] && volume[find(parent, t) as usize] > 0.0
+        };
+        for e in edges.iter_mut().filter(|e| e.valley) {
+            e.valley = solid_face(e.f0, &mut parent) && solid_face(e.f1, &mut parent);
         }
 
         let nf = faces.len();

@@ -14,7 +14,7 @@ pub struct Grid {
     pub d: DVec3,
     u: DVec3,
     w: DVec3,
-    /// Per mesh vertex: its position across d (m).
+    /// Per polygon corner: its position across d (m).
     pub at: Vec<DVec2>,
     lo: DVec2,
     inv_cell: f64,
@@ -26,11 +26,14 @@ pub struct Grid {
     start: Vec<u32>,
     items: Vec<u32>,
     counts: Vec<u32>,
+    /// The polygons binned (a buffer kept from direction to direction).
+    kept: Vec<u32>,
 }
 
 /// What the grid needs of the mesh: its faces as convex polygons (a face's outline when
 /// it is convex, else its triangles), by vertex index.
 pub struct Polygons<'a> {
+    /// The polygons' corners, m.
     pub vertices: &'a [DVec3],
     /// Per polygon: its range of `index`.
     pub spans: &'a [(u32, u32)],
@@ -74,9 +77,9 @@ impl Grid {
             self.at.push(p);
         }
         let ext = (hi - lo).max(DVec2::splat(1e-300));
-        let kept: Vec<u32> = (0..mesh.len() as u32)
-            .filter(|&t| keep(t as usize))
-            .collect();
+        let mut kept = std::mem::take(&mut self.kept);
+        kept.clear();
+        kept.extend((0..mesh.len() as u32).filter(|&t| keep(t as usize)));
         self.boxes.clear();
         self.boxes.resize(
             mesh.len(),
@@ -127,6 +130,7 @@ impl Grid {
                 }
             }
         }
+        self.kept = kept;
     }
 
     fn cell_of(&self, p: DVec2) -> (usize, usize) {
@@ -259,12 +263,13 @@ impl Grid {
     /// Does segment a–b come within `tol` of the projected convex polygon (separating
     /// axes)?
     fn segment_meets(&self, a: DVec2, b: DVec2, corners: &[u32], tol: f64) -> bool {
+        // apart along `axis` by more than tol (axis not normalised: the gap is compared
+        // squared with tol²·|axis|², no square root)
         let separated = |axis: DVec2| {
-            let len = axis.length();
-            if len == 0.0 {
+            let len2 = axis.length_squared();
+            if len2 == 0.0 {
                 return false;
             }
-            let axis = axis / len;
             let (s0, s1) = (a.dot(axis), b.dot(axis));
             let (smin, smax) = (s0.min(s1), s0.max(s1));
             let (mut tmin, mut tmax) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -273,7 +278,8 @@ impl Grid {
                 tmin = tmin.min(t);
                 tmax = tmax.max(t);
             }
-            smin > tmax + tol || tmin > smax + tol
+            let gap = (smin - tmax).max(tmin - smax);
+            gap > 0.0 && gap * gap > tol * tol * len2
         };
         let n = corners.len();
         if separated((b - a).perp()) || separated(DVec2::X) || separated(DVec2::Y) {

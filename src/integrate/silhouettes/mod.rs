@@ -44,7 +44,8 @@ const MAX_CELLS: usize = 4096;
 /// Points per triangle side when a face is sampled (SAMPLES² per triangle).
 const SAMPLES: usize = 16;
 
-/// What is built once per request (the mesh's own vertices are borrowed, not copied).
+/// What is built once per request (the mesh's own vertices are borrowed; only the
+/// polygons' corners are copied).
 pub struct Silhouettes<'a> {
     mesh: &'a Mesh,
     /// Per face: unit normal, a point of its plane, a basis of the plane, two-sidedness,
@@ -59,6 +60,9 @@ pub struct Silhouettes<'a> {
     /// per face, its range of polygons.
     poly_spans: Vec<(u32, u32)>,
     poly_index: Vec<u32>,
+    /// The polygons' corners (m), each once: what a direction projects. A face meshed
+    /// finely but convex is its outline alone, so its inner vertices cost nothing.
+    poly_vertices: Vec<DVec3>,
     poly_face: Vec<u32>,
     face_polygons: Vec<(u32, u32)>,
     topo: Topology,
@@ -177,6 +181,17 @@ impl<'a> Silhouettes<'a> {
             }
             face_polygons.push((first, poly_spans.len() as u32));
         }
+        // the corners renumbered, in order of first use (neighbours stay near)
+        let mut renumber = vec![u32::MAX; mesh.vertices.len()];
+        let mut poly_vertices = Vec::new();
+        for v in poly_index.iter_mut() {
+            let r = &mut renumber[*v as usize];
+            if *r == u32::MAX {
+                *r = poly_vertices.len() as u32;
+                poly_vertices.push(mesh.vertices[*v as usize]);
+            }
+            *v = *r;
+        }
         Silhouettes {
             mesh,
             face_normal: faces.faces.iter().map(|f| f.normal).collect(),
@@ -185,6 +200,7 @@ impl<'a> Silhouettes<'a> {
             face_polygons,
             poly_spans,
             poly_index,
+            poly_vertices,
             poly_face,
             two_sided,
             face_first: faces.faces.iter().map(|f| f.triangles[0]).collect(),
@@ -196,7 +212,7 @@ impl<'a> Silhouettes<'a> {
 
     fn polygons(&self) -> Polygons<'_> {
         Polygons {
-            vertices: &self.mesh.vertices,
+            vertices: &self.poly_vertices,
             spans: &self.poly_spans,
             index: &self.poly_index,
             face: &self.poly_face,
@@ -381,7 +397,7 @@ impl<'a> Silhouettes<'a> {
             poly.extend(
                 self.poly_index[a as usize..b as usize]
                     .iter()
-                    .map(|&v| to2(self.mesh.vertices[v as usize])),
+                    .map(|&v| to2(self.poly_vertices[v as usize])),
             );
             let room = MAX_CELLS.saturating_sub(cells.len());
             whole &= cut_by_segments(poly, &scratch.lines, self.tol, room, |c| {

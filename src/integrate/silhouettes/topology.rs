@@ -76,6 +76,8 @@ impl Topology {
         let mut parent: Vec<u32> = (0..nt as u32).collect();
         let mut open_root = vec![false; nt];
         let mut edges = Vec::new();
+        // each edge's welded ends
+        let mut ends: Vec<(u32, u32)> = Vec::new();
         let mut bad_triangles = Vec::new();
         let face = |t: u32| tri_face[t as usize];
         for shared in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
@@ -99,6 +101,7 @@ impl Topology {
                         always: true,
                         valley: false,
                     });
+                    ends.push((wa, wb));
                 }
                 2 => {
                     let t1 = shared[1].2;
@@ -125,6 +128,7 @@ impl Topology {
                             always: flipped,
                             valley: !flipped && off > tol * n0.length(),
                         });
+                        ends.push((wa, wb));
                     }
                 }
                 _ => {
@@ -143,6 +147,7 @@ impl Topology {
                             always: true,
                             valley: false,
                         });
+                        ends.push((wa, wb));
                     }
                 }
             }
@@ -169,6 +174,7 @@ impl Topology {
         for e in edges.iter_mut().filter(|e| e.valley) {
             e.valley = solid_face(e.f0, &mut parent) && solid_face(e.f1, &mut parent);
         }
+        let edges = merge_in_line(&edges, &ends, &mesh.vertices);
 
         let nf = faces.len();
         let mut with_edge: Vec<(u32, (u32, u32))> = Vec::new();
@@ -202,6 +208,85 @@ impl Topology {
     pub fn contacts_of(&self, face: usize) -> &[(DVec3, DVec3)] {
         &self.contacts[self.contacts_at[face] as usize..self.contacts_at[face + 1] as usize]
     }
+}
+
+/// The edges with runs of edges between the same two faces (or along one face's border)
+/// that continue one another in a straight line joined into one: a finely meshed box side
+/// meets the next along one edge, not hundreds. Its shadow is the same line, so nothing
+/// changes but the count of shadows to search and cut along.
+fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec<Edge> {
+    let key = |e: &Edge| (e.f0.min(e.f1), e.f0.max(e.f1), e.always, e.valley);
+    let mut order: Vec<u32> = (0..edges.len() as u32).collect();
+    order.sort_by_key(|&i| key(&edges[i as usize]));
+    let mut out = Vec::with_capacity(edges.len());
+    let mut used = vec![false; edges.len()];
+    // (vertex, edge) of one group, sorted by vertex
+    let mut at: Vec<(u32, u32)> = Vec::new();
+    let far = |i: u32, v: u32| {
+        let (a, b) = ends[i as usize];
+        if a == v {
+            b
+        } else {
+            a
+        }
+    };
+    for group in order.chunk_by(|&i, &j| key(&edges[i as usize]) == key(&edges[j as usize])) {
+        if group.len() == 1 {
+            out.push(edges[group[0] as usize]);
+            continue;
+        }
+        at.clear();
+        for &i in group {
+            let (a, b) = ends[i as usize];
+            at.extend([(a, i), (b, i)]);
+        }
+        at.sort_unstable();
+        // the group's other edge at `v` when exactly two meet there, in line
+        let next = |v: u32, from: u32| -> Option<u32> {
+            let lo = at.partition_point(|x| x.0 < v);
+            let hi = at.partition_point(|x| x.0 <= v);
+            if hi - lo != 2 {
+                return None;
+            }
+            let g = if at[lo].1 == from {
+                at[lo + 1].1
+            } else {
+                at[lo].1
+            };
+            let c = vertices[v as usize];
+            let u = c - vertices[far(from, v) as usize];
+            let w = vertices[far(g, v) as usize] - c;
+            (u.cross(w).length() <= 1e-12 * u.length() * w.length() && u.dot(w) > 0.0).then_some(g)
+        };
+        for &i in group {
+            if used[i as usize] {
+                continue;
+            }
+            // back to one end of the run, then along it to the other
+            let (mut v, mut cur) = (ends[i as usize].0, i);
+            while let Some(g) = next(v, cur).filter(|&g| g != i && !used[g as usize]) {
+                v = far(g, v);
+                cur = g;
+            }
+            let start = v;
+            used[cur as usize] = true;
+            let mut end = far(cur, start);
+            while let Some(g) = next(end, cur).filter(|&g| !used[g as usize]) {
+                used[g as usize] = true;
+                end = far(g, end);
+                cur = g;
+            }
+            let e = edges[i as usize];
+            out.push(Edge {
+                a: vertices[start as usize],
+                b: vertices[end as usize],
+                f0: e.f0.min(e.f1),
+                f1: e.f0.max(e.f1),
+                ..e
+            });
+        }
+    }
+    out
 }
 
 /// Groups `(key, value)` pairs by key into offsets (`n + 1`) and values.

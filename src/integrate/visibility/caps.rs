@@ -9,7 +9,7 @@
 //! faces themselves. On the 48×128 dish that replaces 6,000 face tests per direction by a
 //! few hundred ball tests.
 
-use super::FaceGeom;
+use super::face::FaceGeom;
 use crate::geometry::convex::{ConvexPart, Lid, LidPoint, LidView};
 use glam::{DVec2, DVec3};
 

@@ -1,7 +1,7 @@
 //! Per-epoch acceleration of the blocker search: every face's bounding sphere seen
 //! along a direction ([`Projection`]), and faces binned on the plane across it ([`FaceGrid`]).
 
-use super::FaceGeom;
+use super::face::FaceGeom;
 use glam::{DVec2, DVec3};
 
 /// Last-query marks per face, so a face in several cells is returned once.

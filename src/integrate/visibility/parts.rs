@@ -14,7 +14,7 @@
 //! A part cut by a face's plane is not used when it is a cap whose section by the plane
 //! overlaps the face: a point of the face inside the hull may see out through the lid.
 
-use super::FaceGeom;
+use super::face::FaceGeom;
 use crate::geometry::convex::ConvexPart;
 use crate::geometry::mesh::Points;
 use crate::geometry::polygon::{convex_hull, HullIndices, Region};
@@ -166,7 +166,7 @@ fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> V
             }
         }
     }
-    super::sort_dedup(&mut out);
+    super::face::sort_dedup(&mut out);
     out
 }
 

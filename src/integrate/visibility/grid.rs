@@ -217,7 +217,7 @@ impl FaceGrid {
 
 #[cfg(test)]
 mod tests {
-    use super::super::reaches;
+    use super::super::proofs::reaches;
     use super::*;
 
     fn face_at(centroid: DVec3, radius: f64) -> FaceGeom {

@@ -634,7 +634,7 @@ pub(super) struct PatchParts {
 }
 
 impl PatchParts {
-    pub(super) fn new(patches: &[super::Patch], part_of: &[u32]) -> PatchParts {
+    pub(super) fn new(patches: &[super::patches::Patch], part_of: &[u32]) -> PatchParts {
         let mut out = PatchParts::default();
         for p in patches {
             let start = out.faces.len();

@@ -9,7 +9,7 @@
 //!   plane beyond one edge of its outline.
 
 use super::face::FaceGeom;
-use super::Patch;
+use super::patches::Patch;
 use crate::geometry::mesh::Points;
 use glam::DVec3;
 use std::ops::Range;

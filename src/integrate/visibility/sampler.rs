@@ -1,7 +1,7 @@
 //! Adaptive ray sampling of a face's visible area, where exact clipping cannot decide.
 
+use super::blockers::Blocker;
 use super::proofs::reaches;
-use super::Blocker;
 use crate::geometry::bvh::LazyOccluder;
 use glam::DVec3;
 

@@ -316,8 +316,8 @@ impl CapStates {
 
 #[cfg(test)]
 mod tests {
+    use super::super::clip::{ShadowBuffers, MIN_COS_EXACT};
     use super::super::oracle::*;
-    use super::super::{ShadowBuffers, MIN_COS_EXACT};
     use super::*;
     use crate::geometry::builtin;
 

@@ -4,8 +4,8 @@
 //! its lid alone — for the whole epoch at once ([`LidTable`]), or one face at a time.
 
 use super::caps::{CapStates, LidState};
+use super::clip::{above_horizon, ShadowBuffers};
 use super::face::FaceGeom;
-use super::{above_horizon, ShadowBuffers};
 use super::{face_directions, Cache, Uncertain, Visibility, VisibilityMode};
 use crate::geometry::polygon::twice_signed_area;
 use glam::DVec3;

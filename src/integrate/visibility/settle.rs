@@ -4,9 +4,10 @@
 //! every part missed and no loose face in reach it is clear. Parts are tested against the
 //! face's whole part first ([`Visibility::part_cover`]), then against the face.
 
+use super::clip::above_horizon;
 use super::parts::{self, Cover, PartCover, Silhouette};
 use super::proofs::reaches;
-use super::{above_horizon, Cache, Visibility, NO_PART};
+use super::{Cache, Visibility, NO_PART};
 use glam::{DVec2, DVec3};
 
 /// What the parts that may hide a face whole settle along one direction.

@@ -314,6 +314,17 @@ impl CapStates {
     }
 }
 
+/// Per face: its place in its cap's tree order (0 for a face of no cap).
+pub(super) fn slots(trees: &[Option<CapTree>], faces: usize) -> Vec<u32> {
+    let mut cap_slot = vec![0; faces];
+    for tree in trees.iter().flatten() {
+        for (i, &f) in tree.order.iter().enumerate() {
+            cap_slot[f as usize] = i as u32;
+        }
+    }
+    cap_slot
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::clip::{ShadowBuffers, MIN_COS_EXACT};

@@ -2,6 +2,7 @@
 //! along a direction ([`Projection`]), and faces binned on the plane across it ([`FaceGrid`]).
 
 use super::face::FaceGeom;
+use crate::geometry::Faces;
 use glam::{DVec2, DVec3};
 
 /// Last-query marks per face, so a face in several cells is returned once.
@@ -213,6 +214,14 @@ impl FaceGrid {
             }
         }
     }
+}
+
+/// Cell size of the per-epoch face grids, m: the median face diameter (at least 1e-9 of
+/// the object's radius `scale`).
+pub(super) fn cell_size(faces: &Faces, scale: f64) -> f64 {
+    let mut d: Vec<f64> = faces.faces.iter().map(|f| 2.0 * f.radius).collect();
+    d.sort_by(f64::total_cmp);
+    d.get(d.len() / 2).copied().unwrap_or(1.0).max(1e-9 * scale)
 }
 
 #[cfg(test)]

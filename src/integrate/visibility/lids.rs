@@ -3,10 +3,12 @@
 //! from the cap's tree, [`super::caps`]); a face that nothing else can reach is decided by
 //! its lid alone — for the whole epoch at once ([`LidTable`]), or one face at a time.
 
+use super::blockers::Blocker;
 use super::caps::{CapStates, LidState};
 use super::clip::{above_horizon, ShadowBuffers};
 use super::face::FaceGeom;
-use super::{face_directions, Cache, Uncertain, Visibility, VisibilityMode};
+use super::settle::Settled;
+use super::{face_directions, Cache, Uncertain, Visibility, VisibilityMode, NO_PART};
 use crate::geometry::polygon::twice_signed_area;
 use glam::DVec3;
 
@@ -51,11 +53,52 @@ impl Visibility {
         self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[usize::from(side < 0.0)]
     }
 
+    /// [`Visibility::visible_area`] for a face (side normal `n`) that its own cap's lid
+    /// alone decides ([`Visibility::lid_decides`]): seen-and-sunlit and seen-and-earthlit
+    /// areas, m², with no search. `None` when clipping to the lid cuts the face into too
+    /// many pieces: the caller searches and samples as for any face.
+    pub(super) fn through_own_lid(
+        &self,
+        cache: &mut Cache,
+        face: usize,
+        n: DVec3,
+        directions: &[Option<DVec3>; 3],
+    ) -> Option<(f64, f64)> {
+        let f = &self.faces[face];
+        let lids = self.own_lid_states(cache, face, directions);
+        if let Some(areas) = lid_decided(&lids, f.pieces_area) {
+            return Some(areas);
+        }
+        // Clipped along one direction only: the lid's cut, measured on the lid's plane.
+        // (The rim's shadow and its occlusion cross a dish along different curves, so
+        // a face on one seldom lies on the other.)
+        let mut clipped = (0..3).filter(|&k| lids[k] == LidState::Clip);
+        if let (Some(k), None) = (clipped.next(), clipped.next()) {
+            let d = directions[k].expect("a clipped direction exists");
+            if let Some(a) = self.area_through_lid(&mut cache.exact.shadows, face, n, d) {
+                let full = f.pieces_area;
+                let areas = match k {
+                    0 => (a, a), // seen part, and all of it lit (or none: `dark`)
+                    1 => (a, full),
+                    _ => (full, a),
+                };
+                return Some(dark(&lids, areas));
+            }
+        }
+        // clipped to the lid alone: no blockers to search for
+        cache.exact.part_hits.iter_mut().for_each(Vec::clear);
+        cache.exact.settled.iter_mut().for_each(Settled::clear);
+        let none: [Vec<Blocker>; 3] = Default::default();
+        let open = open_directions(directions, &lids);
+        self.exact_area(&mut cache.exact, face, n, &open, &none, &lids)
+            .map(|areas| dark(&lids, areas))
+    }
+
     /// For a face that its own cap's lid alone decides ([`Visibility::lid_decides`]): the
     /// lid's state along each direction ([`lid_states`]), walking the cap's tree where the
     /// epoch has not yet.
     #[inline]
-    pub(super) fn own_lid_states(
+    fn own_lid_states(
         &self,
         cache: &mut Cache,
         face: usize,
@@ -181,7 +224,7 @@ fn lid_states(
 /// The areas (m²) of a face of area `area` whose own lid has `lids` along view, Sun and
 /// Earth, when no state is `Clip`: all of it or nothing along each.
 #[inline]
-pub(super) fn lid_decided(lids: &[LidState; 3], area: f64) -> Option<(f64, f64)> {
+fn lid_decided(lids: &[LidState; 3], area: f64) -> Option<(f64, f64)> {
     if lids[0] == LidState::Closed {
         return Some((0.0, 0.0));
     }
@@ -205,6 +248,22 @@ pub(super) fn open_directions(
 pub(super) fn dark(lids: &[LidState; 3], (a_sun, a_earth): (f64, f64)) -> (f64, f64) {
     let lit = |l: LidState, a: f64| if l == LidState::Closed { 0.0 } else { a };
     (lit(lids[1], a_sun), lit(lids[2], a_earth))
+}
+
+/// Marks each face whose lid alone decides what one side of it sees (`lid_only`).
+pub(super) fn mark_lid_only(
+    geoms: &mut [FaceGeom],
+    part_of: &[u32],
+    lid_blockers: &[Option<Vec<u32>>],
+) {
+    // the lid alone decides a cap's inner face when no other face can reach into the
+    // cap and no part is cast whole on the face
+    for (g, &k) in geoms.iter_mut().zip(part_of) {
+        let sealed = k != NO_PART && matches!(&lid_blockers[k as usize], Some(b) if b.is_empty());
+        for s in 0..2 {
+            g.lid_only[s] = sealed && g.lid_side[s] && !g.part_shadows.iter().any(|p| p.sides[s]);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -60,13 +60,12 @@ use crate::scene::Scene;
 use blockers::{Blocker, Kept};
 use caps::{CapStates, CapTree, LidState};
 use clip::ExactScratch;
-use face::{face_geoms, sort_dedup, triangle_area, FaceGeom};
+use face::{face_geoms, triangle_area, FaceGeom};
 use glam::DVec3;
 use grid::{FaceGrid, Projection, Stamp};
 pub use lids::LidTable;
-use lids::{dark, lid_decided, open_directions};
-use parts::PatchParts;
-use patches::Patch;
+use lids::{dark, open_directions};
+use patches::{Patch, PatchParts};
 use proofs::Side;
 use rayon::prelude::*;
 use sampler::Sampler;
@@ -212,27 +211,7 @@ impl Visibility {
                 g.vertices = Vec::new();
             }
         }
-        // A part's hull needs only its faces' corners: a subdivided side adds none.
-        for part in &mut parts {
-            let mut corners: Vec<DVec3> = part
-                .faces
-                .iter()
-                .flat_map(|&f| geoms[f as usize].vertices.iter().copied())
-                .collect();
-            sort_dedup(&mut corners);
-            part.vertices = corners;
-        }
-        let mut part_of = vec![NO_PART; geoms.len()];
-        for (k, part) in parts.iter().enumerate() {
-            for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
-                part_of[f as usize] = k as u32;
-                let g = &mut geoms[f as usize];
-                if part.lid.is_some() {
-                    g.lid_side = [ahead, !ahead && g.two_sided];
-                }
-                g.own_outside = [!ahead, ahead];
-            }
-        }
+        let part_of = parts::assign(&mut parts, &mut geoms);
         // Which parts shadow each face whole: faces × parts work, and lists that grow with
         // it, so a mesh of very many parts (a debris cloud) keeps tiles instead.
         let part_spheres = parts::spheres(&parts);
@@ -265,39 +244,10 @@ impl Visibility {
             }
         }
         let lid_blockers = parts::lid_blockers(&geoms, &parts, &part_of, tol);
-        // the lid alone decides a cap's inner face when no other face can reach into the
-        // cap and no part is cast whole on the face
-        for (g, &k) in geoms.iter_mut().zip(&part_of) {
-            let sealed =
-                k != NO_PART && matches!(&lid_blockers[k as usize], Some(b) if b.is_empty());
-            for s in 0..2 {
-                g.lid_only[s] =
-                    sealed && g.lid_side[s] && !g.part_shadows.iter().any(|p| p.sides[s]);
-            }
-        }
-        let mut cap_slot = vec![0; geoms.len()];
-        for tree in cap_trees.iter().flatten() {
-            for (i, &f) in tree.order.iter().enumerate() {
-                cap_slot[f as usize] = i as u32;
-            }
-        }
+        lids::mark_lid_only(&mut geoms, &part_of, &lid_blockers);
+        let cap_slot = caps::slots(&cap_trees, geoms.len());
         let patch_parts = PatchParts::new(&patches, &part_of);
-        let part_boxes = parts
-            .iter()
-            .map(|p| {
-                let (lo, hi) = p
-                    .vertices
-                    .iter()
-                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
-                        (lo.min(*v), hi.max(*v))
-                    });
-                std::array::from_fn(|i| {
-                    let pick =
-                        |bit: usize, axis: usize| if i & bit == 0 { lo[axis] } else { hi[axis] };
-                    DVec3::new(pick(1, 0), pick(2, 1), pick(4, 2))
-                })
-            })
-            .collect();
+        let part_boxes = parts::boxes(&parts);
         let loose = (0..geoms.len() as u32)
             .filter(|&g| part_of[g as usize] == NO_PART)
             .collect();
@@ -320,11 +270,7 @@ impl Visibility {
             tol,
             clip: scene.clip_shadows,
             parts,
-            grid_cell: {
-                let mut d: Vec<f64> = faces.faces.iter().map(|f| 2.0 * f.radius).collect();
-                d.sort_by(f64::total_cmp);
-                d.get(d.len() / 2).copied().unwrap_or(1.0).max(1e-9 * scale)
-            },
+            grid_cell: grid::cell_size(faces, scale),
         }
     }
 
@@ -343,35 +289,7 @@ impl Visibility {
         let n = f.normal * side;
         let directions = face_directions(dirs, n);
         if self.lid_decides(f, side) {
-            let lids = self.own_lid_states(cache, face, &directions);
-            if let Some(areas) = lid_decided(&lids, f.pieces_area) {
-                let (a_sun, a_earth) = areas;
-                return (a_sun, a_earth, 0);
-            }
-            // Clipped along one direction only: the lid's cut, measured on the lid's plane.
-            // (The rim's shadow and its occlusion cross a dish along different curves, so
-            // a face on one seldom lies on the other.)
-            let mut clipped = (0..3).filter(|&k| lids[k] == LidState::Clip);
-            if let (Some(k), None) = (clipped.next(), clipped.next()) {
-                let d = directions[k].expect("a clipped direction exists");
-                if let Some(a) = self.area_through_lid(&mut cache.exact.shadows, face, n, d) {
-                    let full = f.pieces_area;
-                    let areas = match k {
-                        0 => (a, a), // seen part, and all of it lit (or none: `dark`)
-                        1 => (a, full),
-                        _ => (full, a),
-                    };
-                    let (a_sun, a_earth) = dark(&lids, areas);
-                    return (a_sun, a_earth, 0);
-                }
-            }
-            // clipped to the lid alone: no blockers to search for
-            cache.exact.part_hits.iter_mut().for_each(Vec::clear);
-            cache.exact.settled.iter_mut().for_each(Settled::clear);
-            let none: [Vec<Blocker>; 3] = Default::default();
-            let open = open_directions(&directions, &lids);
-            if let Some(areas) = self.exact_area(&mut cache.exact, face, n, &open, &none, &lids) {
-                let (a_sun, a_earth) = dark(&lids, areas);
+            if let Some((a_sun, a_earth)) = self.through_own_lid(cache, face, n, &directions) {
                 return (a_sun, a_earth, 0);
             }
         }

@@ -155,6 +155,58 @@ pub(super) fn candidates(
         .collect()
 }
 
+/// Every patch's faces grouped by part: `faces` holds them patch after patch, each
+/// patch's ordered by part (faces of no part last), and `runs[p]` lists patch p's groups
+/// as (part, range of `faces`), so a search can pass over the parts it leaves out whole.
+#[derive(Debug, Default)]
+pub(super) struct PatchParts {
+    pub(super) faces: Vec<u32>,
+    pub(super) runs: Vec<Vec<(u32, Range<u32>)>>,
+}
+
+impl PatchParts {
+    pub(super) fn new(patches: &[Patch], part_of: &[u32]) -> PatchParts {
+        let mut out = PatchParts::default();
+        for p in patches {
+            let start = out.faces.len();
+            out.faces.extend(p.faces.clone());
+            // stable: faces keep their (spatial) order within a part
+            out.faces[start..].sort_by_key(|&f| part_of[f as usize]);
+            let mut runs: Vec<(u32, Range<u32>)> = Vec::new();
+            for i in start..out.faces.len() {
+                let part = part_of[out.faces[i] as usize];
+                match runs.last_mut() {
+                    Some((q, r)) if *q == part => r.end = i as u32 + 1,
+                    _ => runs.push((part, i as u32..i as u32 + 1)),
+                }
+            }
+            out.runs.push(runs);
+        }
+        out
+    }
+
+    /// Patch `p`'s faces outside the parts `left_out` says no to.
+    pub(super) fn faces<'a>(
+        &'a self,
+        p: u32,
+        left_out: impl Fn(u32) -> bool + 'a,
+    ) -> impl Iterator<Item = u32> + 'a {
+        self.runs[p as usize]
+            .iter()
+            .filter(move |(part, _)| !left_out(*part))
+            .flat_map(|(_, r)| self.faces[r.start as usize..r.end as usize].iter().copied())
+    }
+
+    /// How many faces [`PatchParts::faces`] gives.
+    pub(super) fn count(&self, p: u32, left_out: impl Fn(u32) -> bool) -> usize {
+        self.runs[p as usize]
+            .iter()
+            .filter(|(part, _)| !left_out(*part))
+            .map(|(_, r)| r.len())
+            .sum()
+    }
+}
+
 impl Visibility {
     /// Occluder patches that may block receiver patch `q` along `d` (patch-level proofs).
     pub(super) fn flag_patches(&self, q: u32, d: DVec3) -> Vec<u32> {

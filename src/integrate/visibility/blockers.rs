@@ -5,7 +5,7 @@
 //! its lid), are left out.
 
 use super::caps::LidState;
-use super::grid::{Projection, GRID_MIN_FACES};
+use super::grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
 use super::parts::PartShadow;
 use super::proofs::{outline_clear, reaches, reaches_front, LARGE_BLOCKER};
 use super::{Cache, Visibility, NO_PART};
@@ -14,7 +14,7 @@ use glam::{DVec2, DVec3};
 impl Visibility {
     /// Patch- then face-level proofs; what survives are the possible blockers of `face`
     /// (on side `side`) along each direction, into `out`. With `whole` (for exact
-    /// clipping), parts that shadow the face whole go to `cache.exact.part_hits` instead of
+    /// clipping), parts that shadow the face whole go to `cache.part_hits` instead of
     /// face by face, and a face on the inner side of a cap is decided against its lid
     /// (returned per direction) instead of the cap's faces.
     pub(super) fn collect_blockers(
@@ -30,12 +30,11 @@ impl Visibility {
         let n = f.normal * side;
         let side_index = usize::from(side < 0.0);
         let key = (f.patch, side > 0.0);
-        if cache.key != Some(key) {
-            cache.key = Some(key);
-            cache.flagged = [None, None, None];
-            cache.kept = [None, None, None];
+        if cache.search.key != Some(key) {
+            cache.search.reset();
+            cache.search.key = Some(key);
         }
-        cache.exact.part_hits.iter_mut().for_each(Vec::clear);
+        cache.part_hits.iter_mut().for_each(Vec::clear);
         let own_cap = (whole && self.clip && f.lid_side[side_index]).then(|| self.part_of[face]);
         let shadowing: &[PartShadow] = if whole { &f.part_shadows } else { &[] };
         // parts cast whole or wholly behind the face, and the face's own part where it
@@ -69,7 +68,7 @@ impl Visibility {
             let Some(d) = *d else { continue };
             // and the parts this direction's cover test settled: missing the face, or
             // (when clipping) cast whole
-            let settled = &cache.exact.settled[k];
+            let settled = &cache.settled[k];
             let mask = mask | settled.miss | if whole { settled.ahead_bits } else { 0 };
             let left_out = |part: u32| left_out_by(mask, part);
             let mut lid_blockers = None;
@@ -89,7 +88,7 @@ impl Visibility {
             for (i, p) in shadowing.iter().enumerate() {
                 let (c, r) = self.part_spheres[p.part as usize];
                 if p.sides[side_index] && reaches(f.centroid, f.radius, c, r, d) {
-                    cache.exact.part_hits[k].push(i as u32);
+                    cache.part_hits[k].push(i as u32);
                 }
             }
             let project = |proj: &mut Projection| {
@@ -107,11 +106,12 @@ impl Visibility {
                 }
                 continue;
             }
-            let flagged = cache.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
+            let flagged =
+                cache.search.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
             // faces to test: those of the flagged patches but the parts left out (a mask
             // says which when there are few parts)
             let cached = self.parts.len() <= 64;
-            let kept = match &mut cache.kept[k] {
+            let kept = match &mut cache.search.kept[k] {
                 Some(kept) if cached && kept.mask == mask => kept,
                 slot => {
                     let mut kept = Kept {
@@ -135,18 +135,18 @@ impl Visibility {
             }
             let out = &mut out[k];
             if count > GRID_MIN_FACES {
-                project(&mut cache.projections[k]);
-                let proj = &cache.projections[k];
+                project(&mut cache.search.projections[k]);
+                let proj = &cache.search.projections[k];
                 // many faces to test (a finely meshed curved part): ask the epoch's grid of
                 // faces seen along d for those whose shadow can fall on this one
                 // (a cap's own faces left out of the grid: there are many)
-                let grid = &mut cache.grids[k][usize::from(own_cap.is_some())];
+                let grid = &mut cache.search.grids[k][usize::from(own_cap.is_some())];
                 if grid.dir != Some(d) || grid.excluded != own_cap {
                     grid.build(proj, self.grid_cell, own_cap, &self.part_of);
                 }
                 let at = &proj.at[face];
                 let centre = DVec2::new(at[0], at[1]);
-                grid.query(centre, at[3], &mut cache.stamp, |g| {
+                grid.query(centre, at[3], &mut cache.search.stamp, |g| {
                     if !left_out(self.part_of[g as usize]) {
                         self.consider_blocker(face, n, g as usize, Along::Projected(proj), out)
                     }
@@ -280,8 +280,38 @@ enum Along<'a> {
     Direction(DVec3),
 }
 
-/// Flagged patches that have faces to test, given the parts left out ([`Cache::kept`]).
-pub(super) struct Kept {
+/// The blocker search's scratch ([`Cache::search`]): patch-level results for the receiver
+/// patch and side last searched, and the faces seen along each direction.
+#[derive(Default)]
+pub(super) struct SearchScratch {
+    key: Option<(u32, bool)>,
+    /// Flagged occluder patches for view, sun, earth (None: not computed yet).
+    flagged: [Option<Vec<u32>>; 3],
+    /// Per direction: of the flagged patches, those with faces to test when the parts in
+    /// a mask are left out, with their count — for the last mask asked (faces of a patch
+    /// mostly share theirs).
+    kept: [Option<Kept>; 3],
+    /// Faces' bounding spheres seen along each direction (built on first use in an epoch).
+    projections: [Projection; 3],
+    /// Faces binned across each direction (built on first use in an epoch): all, and all
+    /// but a cap's (for the cap's own faces, [`Visibility::collect_blockers`]).
+    grids: [[FaceGrid; 2]; 3],
+    /// Per face: the query that last returned it (deduplicates multi-cell faces).
+    stamp: Stamp,
+}
+
+impl SearchScratch {
+    /// Forgets the patch-level results, which hold within one epoch. The projections and
+    /// grids are keyed by their direction and kept.
+    pub(super) fn reset(&mut self) {
+        self.key = None;
+        self.flagged = [None, None, None];
+        self.kept = [None, None, None];
+    }
+}
+
+/// Flagged patches that have faces to test, given the parts left out ([`SearchScratch::kept`]).
+struct Kept {
     /// Parts left out (bit p for part p).
     mask: u64,
     patches: Vec<u32>,

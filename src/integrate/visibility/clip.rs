@@ -5,31 +5,19 @@
 
 use super::blockers::Blocker;
 use super::caps::LidState;
-use super::parts::{PartCover, Silhouette};
-use super::settle::Settled;
-use super::Visibility;
+use super::parts::Silhouette;
+use super::{Cache, Visibility};
 use crate::geometry::polygon::{convex_hull, Region};
 use glam::{DVec2, DVec3};
 
-/// Buffers for [`Visibility::exact_area`].
+/// Buffers for [`Visibility::exact_area`] ([`Cache::clip`]).
 #[derive(Default)]
-pub(super) struct ExactScratch {
+pub(super) struct ClipScratch {
     /// Seen (and then sunlit) part of the face.
-    pub(super) lit: Region,
+    lit: Region,
     /// Seen and earthlit part.
-    pub(super) earthlit: Region,
+    earthlit: Region,
     pub(super) shadows: ShadowBuffers,
-    /// Per direction, per part: its silhouette this epoch.
-    pub(super) silhouettes: [Vec<Silhouette>; 3],
-    /// Per direction: the parts that may shadow the current face whole (indices into
-    /// its `part_shadows`), from [`Visibility::collect_blockers`].
-    pub(super) part_hits: [Vec<u32>; 3],
-    /// Per direction: what the face's cover candidates settle ([`Visibility::settle_by_parts`]).
-    pub(super) settled: [Settled; 3],
-    /// Per direction, per part: the other parts' cover test against it whole.
-    pub(super) part_covers: [Vec<PartCover>; 3],
-    /// The face's vertices projected across the direction being settled.
-    pub(super) across: Vec<DVec2>,
 }
 
 /// Buffers for casting one direction's shadows.
@@ -99,7 +87,7 @@ impl Visibility {
     /// samples instead).
     pub(super) fn exact_area(
         &self,
-        x: &mut ExactScratch,
+        cache: &mut Cache,
         face: usize,
         n: DVec3,
         dirs: &[Option<DVec3>; 3],
@@ -107,6 +95,7 @@ impl Visibility {
         lids: &[LidState; 3],
     ) -> Option<(f64, f64)> {
         let dirs = dirs.map(|d| d.map(|d| above_horizon(d, n)));
+        let x = &mut cache.clip;
         let f = &self.faces[face];
         let (u, w) = crate::radiometry::earth::orthonormal_basis(n);
         let c = f.centroid;
@@ -227,14 +216,14 @@ impl Visibility {
             }
             Some(())
         };
-        let [sv, ss, se] = &mut x.silhouettes;
-        let [av, as_, ae] = &x.settled;
+        let [sv, ss, se] = &mut cache.silhouettes;
+        let [av, as_, ae] = &cache.settled;
         shadows(
             &mut x.lit,
             0,
             &mut x.shadows,
             sv,
-            &x.part_hits[0],
+            &cache.part_hits[0],
             &av.ahead,
         )?;
         let seen = x.lit.area();
@@ -248,7 +237,7 @@ impl Visibility {
                 2,
                 &mut x.shadows,
                 se,
-                &x.part_hits[2],
+                &cache.part_hits[2],
                 &ae.ahead,
             )?;
             x.earthlit.area()
@@ -261,7 +250,7 @@ impl Visibility {
                 1,
                 &mut x.shadows,
                 ss,
-                &x.part_hits[1],
+                &cache.part_hits[1],
                 &as_.ahead,
             )?;
             x.lit.area()

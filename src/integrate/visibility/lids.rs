@@ -75,7 +75,7 @@ impl Visibility {
         let mut clipped = (0..3).filter(|&k| lids[k] == LidState::Clip);
         if let (Some(k), None) = (clipped.next(), clipped.next()) {
             let d = directions[k].expect("a clipped direction exists");
-            if let Some(a) = self.area_through_lid(&mut cache.exact.shadows, face, n, d) {
+            if let Some(a) = self.area_through_lid(&mut cache.clip.shadows, face, n, d) {
                 let full = f.pieces_area;
                 let areas = match k {
                     0 => (a, a), // seen part, and all of it lit (or none: `dark`)
@@ -86,11 +86,11 @@ impl Visibility {
             }
         }
         // clipped to the lid alone: no blockers to search for
-        cache.exact.part_hits.iter_mut().for_each(Vec::clear);
-        cache.exact.settled.iter_mut().for_each(Settled::clear);
+        cache.part_hits.iter_mut().for_each(Vec::clear);
+        cache.settled.iter_mut().for_each(Settled::clear);
         let none: [Vec<Blocker>; 3] = Default::default();
         let open = open_directions(directions, &lids);
-        self.exact_area(&mut cache.exact, face, n, &open, &none, &lids)
+        self.exact_area(cache, face, n, &open, &none, &lids)
             .map(|areas| dark(&lids, areas))
     }
 

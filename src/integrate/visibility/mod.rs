@@ -57,19 +57,19 @@ use crate::geometry::bvh::LazyOccluder;
 use crate::geometry::convex::{convex_parts, ConvexPart};
 use crate::geometry::Faces;
 use crate::scene::Scene;
-use blockers::{Blocker, Kept};
+use blockers::{Blocker, SearchScratch};
 use caps::{CapStates, CapTree, LidState};
-use clip::ExactScratch;
+use clip::ClipScratch;
 use face::{face_geoms, triangle_area, FaceGeom};
 use glam::DVec3;
-use grid::{FaceGrid, Projection, Stamp};
 pub use lids::LidTable;
 use lids::{dark, open_directions};
+use parts::Silhouette;
 use patches::{Patch, PatchParts};
 use proofs::Side;
 use rayon::prelude::*;
 use sampler::Sampler;
-use settle::Settled;
+use settle::{SettleScratch, Settled};
 
 /// How faces are sampled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -135,24 +135,23 @@ pub struct Visibility {
     cap_slot: Vec<u32>,
 }
 
-/// Per-thread cache of patch-level results, valid within one epoch.
+/// Per-thread scratch, and what one step hands the next for the face at hand. Each step
+/// keeps its own buffers in it ([`Cache::reset`] at the start of each epoch).
 #[derive(Default)]
 pub struct Cache {
-    key: Option<(u32, bool)>,
-    /// Flagged occluder patches for view, sun, earth (None: not computed yet).
-    flagged: [Option<Vec<u32>>; 3],
-    /// Per direction: of the flagged patches, those with faces to test when the parts in
-    /// a mask are left out, with their count — for the last mask asked (faces of a patch
-    /// mostly share theirs).
-    kept: [Option<Kept>; 3],
-    exact: ExactScratch,
-    /// Faces' bounding spheres seen along each direction (built on first use in an epoch).
-    projections: [Projection; 3],
-    /// Faces binned across each direction (built on first use in an epoch): all, and all
-    /// but a cap's (for the cap's own faces, [`Visibility::collect_blockers`]).
-    grids: [[FaceGrid; 2]; 3],
-    /// Per face: the query that last returned it (deduplicates multi-cell faces).
-    stamp: Stamp,
+    /// The blocker search's ([`Visibility::collect_blockers`]).
+    search: SearchScratch,
+    /// Per direction: what the face's cover candidates settle ([`Visibility::settle_by_parts`]).
+    settled: [Settled; 3],
+    /// Buffers for [`Visibility::settle_by_parts`].
+    settle: SettleScratch,
+    /// Per direction: the parts that may shadow the current face whole (indices into
+    /// its `part_shadows`), from [`Visibility::collect_blockers`].
+    part_hits: [Vec<u32>; 3],
+    /// Per direction, per part: its silhouette this epoch.
+    silhouettes: [Vec<Silhouette>; 3],
+    /// Buffers for [`Visibility::exact_area`].
+    clip: ClipScratch,
     /// Per direction, per part: a cap's face states along it (built on first use).
     cap_states: [Vec<CapStates>; 3],
     /// Buffers for a face's possible blockers per direction (see [`Sampler`]).
@@ -165,9 +164,7 @@ impl Cache {
     /// the faces) is kept for the next epoch along the same direction: one request's
     /// mesh, so the same answer (a Sun fixed in the body frame, an Earth at nadir).
     pub fn reset(&mut self) {
-        self.key = None;
-        self.flagged = [None, None, None];
-        self.kept = [None, None, None];
+        self.search.reset();
     }
 }
 
@@ -303,7 +300,7 @@ impl Visibility {
         // Along a direction that one part hides the whole face from, it is dark whatever
         // else lies there: no blockers to search or clip (a dish's back behind the bus).
         // Along one that nothing can shadow it from, it is lit (or seen) whole.
-        cache.exact.settled.iter_mut().for_each(Settled::clear);
+        cache.settled.iter_mut().for_each(Settled::clear);
         let [hidden, clear] = self.settle_by_parts(cache, face, side, &directions);
         if hidden[0] {
             return (0.0, 0.0, 0);
@@ -358,17 +355,15 @@ impl Visibility {
         let open = open_directions(directions, &lids);
         let full_area = f.pieces_area;
         if s.blockers.iter().all(Vec::is_empty)
-            && cache.exact.part_hits.iter().all(Vec::is_empty)
-            && cache.exact.settled.iter().all(|s| s.ahead.is_empty())
+            && cache.part_hits.iter().all(Vec::is_empty)
+            && cache.settled.iter().all(|s| s.ahead.is_empty())
             && lids.iter().all(|l| *l != LidState::Clip)
         {
             let (a_sun, a_earth) = dark(&lids, (full_area, full_area));
             return (a_sun, a_earth, 0);
         }
         if self.mode == VisibilityMode::Adaptive && self.clip {
-            if let Some(areas) =
-                self.exact_area(&mut cache.exact, face, n, &open, &s.blockers, &lids)
-            {
+            if let Some(areas) = self.exact_area(cache, face, n, &open, &s.blockers, &lids) {
                 let (a_sun, a_earth) = dark(&lids, areas);
                 return (a_sun, a_earth, 0);
             }

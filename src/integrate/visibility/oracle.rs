@@ -20,10 +20,10 @@ impl Visibility {
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
         let directions = [Some(dirs.view), dirs.sun, earth];
         let mut blockers: [Vec<Blocker>; 3] = Default::default();
-        cache.exact.settled.iter_mut().for_each(Settled::clear);
+        cache.settled.iter_mut().for_each(Settled::clear);
         self.collect_blockers(cache, face, side, &directions, false, &mut blockers);
         let open = [LidState::Open; 3];
-        self.exact_area(&mut cache.exact, face, n, &directions, &blockers, &open)
+        self.exact_area(cache, face, n, &directions, &blockers, &open)
     }
 }
 

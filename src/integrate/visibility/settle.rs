@@ -37,10 +37,19 @@ const PART_COVER_MIN_FACES: usize = 32;
 /// along a direction ([`Visibility::settle_by_parts`]).
 const MAX_LOOSE: usize = 8;
 
+/// Buffers for [`Visibility::settle_by_parts`] ([`Cache::settle`]).
+#[derive(Default)]
+pub(super) struct SettleScratch {
+    /// Per direction, per part: the other parts' cover test against it whole.
+    part_covers: [Vec<PartCover>; 3],
+    /// The face's vertices projected across the direction being settled.
+    across: Vec<DVec2>,
+}
+
 impl Visibility {
     /// Per direction: is `face` (on side `side`) hidden whole along it by one convex part
     /// (first array), or can nothing shadow it along it (second)? What else its cover
-    /// candidates settle goes to `cache.exact.settled` ([`parts::Silhouette::cover`]).
+    /// candidates settle goes to `cache.settled` ([`parts::Silhouette::cover`]).
     /// Parts are tested first against the face's whole part ([`Visibility::part_cover`]),
     /// then against the face.
     pub(super) fn settle_by_parts(
@@ -72,14 +81,14 @@ impl Visibility {
         } else {
             u64::MAX // never all settled: no direction is called clear
         };
-        let x = &mut cache.exact;
+        let x = &mut cache.settle;
         for (k, d) in directions.iter().enumerate() {
             let Some(d) = *d else { continue };
             // the direction the shadows are cast along (`exact_area`'s)
             let cast = above_horizon(d, n);
             // the face's corners across d, projected once a part needs its silhouette
             x.across.clear();
-            let (silhouettes, settled) = (&mut x.silhouettes[k], &mut x.settled[k]);
+            let (silhouettes, settled) = (&mut cache.silhouettes[k], &mut cache.settled[k]);
             // (a face whose horizon bends the direction has its own: no part's result)
             if whole_part && cast == d {
                 let covers = &mut x.part_covers[k];
@@ -264,7 +273,7 @@ mod tests {
                         continue;
                     }
                     let dirs = [Some(view), (n.dot(sun) > 0.0).then_some(sun), None];
-                    cache.exact.settled.iter_mut().for_each(Settled::clear);
+                    cache.settled.iter_mut().for_each(Settled::clear);
                     let [dark, unshadowed] = vis.settle_by_parts(&mut cache, i, side, &dirs);
                     let points: Vec<DVec3> = (0..64)
                         .map(|_| {
@@ -293,7 +302,7 @@ mod tests {
                                 "face {i}: said clear along {d}, but a ray meets a face"
                             );
                         }
-                        let settled = &cache.exact.settled[k];
+                        let settled = &cache.settled[k];
                         for part in 0..vis.parts.len().min(64) as u32 {
                             if settled.miss & (1 << part) != 0 {
                                 missed += 1;

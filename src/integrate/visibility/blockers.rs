@@ -5,6 +5,7 @@
 //! its lid), are left out.
 
 use super::caps::LidState;
+use super::face::side_index;
 use super::grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
 use super::parts::PartShadow;
 use super::proofs::{outline_clear, reaches, reaches_front, LARGE_BLOCKER};
@@ -28,7 +29,7 @@ impl Visibility {
     ) -> [LidState; 3] {
         let f = &self.faces[face];
         let n = f.normal * side;
-        let side_index = usize::from(side < 0.0);
+        let side_index = side_index(side);
         let key = (f.patch, side > 0.0);
         if cache.search.key != Some(key) {
             cache.search.reset();

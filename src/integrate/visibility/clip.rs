@@ -6,7 +6,7 @@
 use super::blockers::Blocker;
 use super::caps::LidState;
 use super::parts::Silhouette;
-use super::{Cache, Visibility};
+use super::{Cache, Visibility, EARTH, SUN, VIEW};
 use crate::geometry::polygon::{convex_hull, Region};
 use glam::{DVec2, DVec3};
 
@@ -220,37 +220,37 @@ impl Visibility {
         let [av, as_, ae] = &cache.settled;
         shadows(
             &mut x.lit,
-            0,
+            VIEW,
             &mut x.shadows,
             sv,
-            &cache.part_hits[0],
+            &cache.part_hits[VIEW],
             &av.ahead,
         )?;
         let seen = x.lit.area();
         if x.lit.is_empty() {
             return Some((0.0, 0.0)); // hidden: nothing to light
         }
-        let a_earth = if dirs[2].is_some() {
+        let a_earth = if dirs[EARTH].is_some() {
             x.earthlit.clone_from(&x.lit);
             shadows(
                 &mut x.earthlit,
-                2,
+                EARTH,
                 &mut x.shadows,
                 se,
-                &cache.part_hits[2],
+                &cache.part_hits[EARTH],
                 &ae.ahead,
             )?;
             x.earthlit.area()
         } else {
             seen
         };
-        let a_sun = if dirs[1].is_some() {
+        let a_sun = if dirs[SUN].is_some() {
             shadows(
                 &mut x.lit,
-                1,
+                SUN,
                 &mut x.shadows,
                 ss,
-                &cache.part_hits[1],
+                &cache.part_hits[SUN],
                 &as_.ahead,
             )?;
             x.lit.area()

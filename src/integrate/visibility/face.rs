@@ -47,6 +47,13 @@ pub(super) struct FaceGeom {
     pub(super) patch: u32,
 }
 
+/// Where side `side` (+1 front, −1 back) sits in a face's per-side arrays (`[_; 2]`):
+/// 0 front, 1 back.
+#[inline]
+pub(super) fn side_index(side: f64) -> usize {
+    usize::from(side < 0.0)
+}
+
 impl FaceGeom {
     /// The convex polygons the face is made of: its outline, or else its triangles.
     pub(super) fn polygons(&self) -> impl Iterator<Item = &[DVec3]> {

@@ -6,9 +6,10 @@
 use super::blockers::Blocker;
 use super::caps::{CapStates, LidState};
 use super::clip::{above_horizon, ShadowBuffers};
-use super::face::FaceGeom;
+use super::face::{side_index, FaceGeom};
 use super::settle::Settled;
 use super::{face_directions, Cache, Uncertain, Visibility, VisibilityMode, NO_PART};
+use super::{EARTH, SUN, VIEW};
 use crate::geometry::polygon::twice_signed_area;
 use glam::DVec3;
 
@@ -50,7 +51,7 @@ impl Visibility {
     /// Is `f` (on side `side`) a cap's inner face that nothing but its own cap can shadow?
     #[inline]
     pub(super) fn lid_decides(&self, f: &FaceGeom, side: f64) -> bool {
-        self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[usize::from(side < 0.0)]
+        self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[side_index(side)]
     }
 
     /// [`Visibility::visible_area`] for a face (side normal `n`) that its own cap's lid
@@ -78,8 +79,8 @@ impl Visibility {
             if let Some(a) = self.area_through_lid(&mut cache.clip.shadows, face, n, d) {
                 let full = f.pieces_area;
                 let areas = match k {
-                    0 => (a, a), // seen part, and all of it lit (or none: `dark`)
-                    1 => (a, full),
+                    VIEW => (a, a), // seen part, and all of it lit (or none: `dark`)
+                    SUN => (a, full),
                     _ => (full, a),
                 };
                 return Some(dark(&lids, areas));
@@ -213,7 +214,7 @@ fn lid_states(
     for (k, d) in directions.iter().enumerate() {
         if let Some(d) = *d {
             lids[k] = state(k, d);
-            if k == 0 && lids[0] == LidState::Closed {
+            if k == VIEW && lids[VIEW] == LidState::Closed {
                 break;
             }
         }
@@ -225,7 +226,7 @@ fn lid_states(
 /// Earth, when no state is `Clip`: all of it or nothing along each.
 #[inline]
 fn lid_decided(lids: &[LidState; 3], area: f64) -> Option<(f64, f64)> {
-    if lids[0] == LidState::Closed {
+    if lids[VIEW] == LidState::Closed {
         return Some((0.0, 0.0));
     }
     if lids.contains(&LidState::Clip) {
@@ -247,7 +248,7 @@ pub(super) fn open_directions(
 /// Earth's direction.
 pub(super) fn dark(lids: &[LidState; 3], (a_sun, a_earth): (f64, f64)) -> (f64, f64) {
     let lit = |l: LidState, a: f64| if l == LidState::Closed { 0.0 } else { a };
-    (lit(lids[1], a_sun), lit(lids[2], a_earth))
+    (lit(lids[SUN], a_sun), lit(lids[EARTH], a_earth))
 }
 
 /// Marks each face whose lid alone decides what one side of it sees (`lid_only`).
@@ -294,7 +295,7 @@ mod tests {
             for (i, g) in vis.faces.iter().enumerate() {
                 for side in [1.0, -1.0] {
                     let n = g.normal * side;
-                    if !g.lid_only[usize::from(side < 0.0)] || n.dot(view) <= 0.0 {
+                    if !g.lid_only[side_index(side)] || n.dot(view) <= 0.0 {
                         continue;
                     }
                     let dirs = Uncertain {

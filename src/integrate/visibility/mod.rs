@@ -91,6 +91,13 @@ pub struct Uncertain {
     pub earth: Option<DVec3>,
 }
 
+/// Where each direction sits in the per-direction arrays (`[_; 3]`, in the order of
+/// [`face_directions`]): towards the observer, the Sun, the Earth.
+const VIEW: usize = 0;
+const SUN: usize = 1;
+const EARTH: usize = 2;
+
+/// A face of no convex part (in [`Visibility::part_of`]).
 const NO_PART: u32 = u32::MAX;
 
 /// Ray-casting state built once per request. The per-epoch blocker search
@@ -302,13 +309,13 @@ impl Visibility {
         // Along one that nothing can shadow it from, it is lit (or seen) whole.
         cache.settled.iter_mut().for_each(Settled::clear);
         let [hidden, clear] = self.settle_by_parts(cache, face, side, &directions);
-        if hidden[0] {
+        if hidden[VIEW] {
             return (0.0, 0.0, 0);
         }
         let lit = |k: usize, a: f64| if hidden[k] { 0.0 } else { a };
         let directions = [0, 1, 2].map(|k| directions[k].filter(|_| !hidden[k] && !clear[k]));
         if directions.iter().all(Option::is_none) {
-            return (lit(1, f.pieces_area), lit(2, f.pieces_area), 0);
+            return (lit(SUN, f.pieces_area), lit(EARTH, f.pieces_area), 0);
         }
         // the blocker lists' buffers are the cache's, kept from face to face
         let mut blockers = std::mem::take(&mut cache.blockers);
@@ -324,7 +331,7 @@ impl Visibility {
         );
         let (a_sun, a_earth, rays) = self.shadowed_area(cache, face, side, &directions, &mut s);
         cache.blockers = std::mem::take(&mut s.blockers);
-        (lit(1, a_sun), lit(2, a_earth), rays)
+        (lit(SUN, a_sun), lit(EARTH, a_earth), rays)
     }
 
     /// [`Visibility::visible_area`] for a face that its own cap's lid does not decide
@@ -349,7 +356,7 @@ impl Visibility {
             return (s.a_sun, s.a_earth, s.rays);
         }
         let lids = self.collect_blockers(cache, face, side, directions, true, &mut s.blockers);
-        if lids[0] == LidState::Closed {
+        if lids[VIEW] == LidState::Closed {
             return (0.0, 0.0, 0); // the face's own cap hides it
         }
         let open = open_directions(directions, &lids);

@@ -2,6 +2,7 @@
 
 use super::blockers::Blocker;
 use super::proofs::reaches;
+use super::{EARTH, SUN, VIEW};
 use crate::geometry::bvh::LazyOccluder;
 use glam::DVec3;
 
@@ -70,13 +71,13 @@ impl<'a> Sampler<'a> {
             if let (true, Some(d)) = (c, d) {
                 self.rays += 1;
                 clear[k] = self.occluder.get().is_clear(p, self.n, d);
-                if k == 0 && !clear[0] {
+                if k == VIEW && !clear[VIEW] {
                     return 0; // hidden from the observer: nothing else matters
                 }
             }
         }
-        let sun = self.dirs[1].is_some() && clear[1];
-        (sun as u8) | ((clear[2] as u8) << 1)
+        let sun = self.dirs[SUN].is_some() && clear[SUN];
+        (sun as u8) | ((clear[EARTH] as u8) << 1)
     }
 
     /// Refines triangle `p`. `values` are corner samples taken by the parent (with its
@@ -109,7 +110,7 @@ impl<'a> Sampler<'a> {
         }
         if check == [false; 3] {
             // proven clear: seen, and lit by whatever lights the face
-            self.a_sun += if self.dirs[1].is_some() { area } else { 0.0 };
+            self.a_sun += if self.dirs[SUN].is_some() { area } else { 0.0 };
             self.a_earth += area;
             return;
         }

@@ -5,9 +5,10 @@
 //! face's whole part first ([`Visibility::part_cover`]), then against the face.
 
 use super::clip::above_horizon;
+use super::face::side_index;
 use super::parts::{self, Cover, PartCover, Silhouette};
 use super::proofs::reaches;
-use super::{Cache, Visibility, NO_PART};
+use super::{Cache, Visibility, NO_PART, VIEW};
 use glam::{DVec2, DVec3};
 
 /// What the parts that may hide a face whole settle along one direction.
@@ -60,7 +61,7 @@ impl Visibility {
         directions: &[Option<DVec3>; 3],
     ) -> [[bool; 3]; 2] {
         let f = &self.faces[face];
-        let side_index = usize::from(side < 0.0);
+        let side_index = side_index(side);
         let n = f.normal * side;
         let covers = &f.covers[side_index];
         let (mut hidden, mut clear) = ([false; 3], [false; 3]);
@@ -101,7 +102,7 @@ impl Visibility {
                 }
                 if whole.hidden {
                     hidden[k] = true;
-                    if k == 0 {
+                    if k == VIEW {
                         break; // unseen: nothing else matters
                     }
                     continue;
@@ -147,7 +148,7 @@ impl Visibility {
                     Cover::Ahead | Cover::Unknown => {}
                 }
             }
-            if k == 0 && hidden[0] {
+            if k == VIEW && hidden[VIEW] {
                 break; // unseen: nothing else matters
             }
             clear[k] = !hidden[k]

@@ -2,42 +2,57 @@
 //!
 //! Rays are cast only where a face may really be partly shadowed or hidden. Per face and
 //! epoch, a direction (to the Sun, the Earth or the observer) is *clear* when no part of
-//! the mesh can lie along it. Two exact tests prove a direction clear without rays:
-//! - **reach**: the occluder's bounding sphere misses the half-infinite cylinder swept by
-//!   the face's bounding sphere along the direction;
-//! - **half-space**: if the face lies wholly in front of an occluder's plane and the
-//!   direction points away from that plane (d·n > 0), a ray from the face only moves
-//!   further from the plane and can never cross the occluder (likewise behind / towards).
-//!   This is what keeps a concave dish lit from in front free of rays.
+//! the mesh can lie along it; what is not proven clear is clipped exactly, and only what
+//! clipping cannot do is sampled. [`Visibility::visible_area`] decides a face (one side,
+//! one epoch) by these steps in this order, each ending the face's work when it can:
 //!
-//! Faces are grouped into spatial *patches* (with bounding spheres and normal cones), so
-//! whole groups of occluders are dismissed at once. A face with an unproven direction is
-//! then **clipped**: each possible blocker face, cut to the part in front of the face's
-//! plane, is projected along the direction onto that plane (a convex polygon) and
-//! subtracted from the face ([`crate::geometry::polygon::Region`]). That area is exact —
-//! no rays, no tolerance — and costs a few polygon splits per blocker.
+//! 1. **The lid** ([`lids`]): a face of a convex cap (a dish), on its inner side, sees
+//!    out only through the cap's lid (its rim): per direction the lid passes all of it,
+//!    none of it, or it is clipped to the lid projected back onto it (decided for many
+//!    faces at once, [`caps`]). Where nothing else can reach into the cap that decides the
+//!    face — most such faces are summed for the whole epoch from one [`LidTable`] before
+//!    `visible_area` is asked.
+//! 2. **Whole parts** ([`settle`]): along a direction that one convex part of the mesh (a
+//!    box, a dish: [`crate::geometry::convex::ConvexPart`], [`parts`]) hides the whole
+//!    face from, it is dark whatever else lies there (a dish's back behind the bus); along
+//!    one that every part misses, with no loose face in reach, it is lit (or seen) whole.
+//! 3. **The blocker search** ([`blockers`]): the faces that may shadow it along what is
+//!    left. Exact tests prove directions clear without rays ([`proofs`]):
+//!    - **reach**: the occluder's bounding sphere misses the half-infinite cylinder swept
+//!      by the face's bounding sphere along the direction;
+//!    - **half-space**: if the face lies wholly in front of an occluder's plane and the
+//!      direction points away from that plane (d·n > 0), a ray from the face only moves
+//!      further from the plane and can never cross the occluder (likewise behind /
+//!      towards). This is what keeps a concave dish lit from in front free of rays.
 //!
-//! Convex parts of the mesh (a box, a dish: [`crate::geometry::convex::ConvexPart`]) are
-//! handled whole ([`parts`]):
-//! - a part in front of a face, or cut by its plane (when it has many faces), is
-//!   subtracted as one polygon from its silhouette, instead of face by face: a finely
-//!   meshed dish over the bus would otherwise cut the bus's top into hundreds of pieces;
-//! - a part wholly behind a face, and a face's own part seen from outside, cannot block
-//!   it: their faces are not searched at all;
-//! - a face of a convex cap, on its inner side, sees out only through the cap's lid
-//!   (its rim): per direction the lid passes all of it, none of it, or it is clipped to
-//!   the lid projected back onto it (decided for many faces at once, [`caps`]); only
-//!   faces in front of the lid or inside the cap's hull ([`parts::lid_blockers`]) are
-//!   searched besides.
+//!    Faces are grouped into spatial *patches* ([`patches`], with bounding spheres and
+//!    normal cones), so whole groups of occluders are dismissed at once, and binned per
+//!    epoch across each direction ([`grid`]) when many are left. A part wholly behind a
+//!    face, and a face's own part seen from outside, cannot block it: their faces are not
+//!    searched at all; nor, for a cap's inner face, are the cap's own (only faces in front
+//!    of the lid or inside the cap's hull, [`parts::lid_blockers`]). No blocker left: the
+//!    face is lit and seen whole.
+//! 4. **Exact clipping** ([`clip`]): each possible blocker face, cut to the part in front
+//!    of the face's plane, is projected along the direction onto that plane (a convex
+//!    polygon) and subtracted from the face ([`crate::geometry::polygon::Region`]). A
+//!    part in front of the face, or cut by its plane (when it has many faces), is
+//!    subtracted as one polygon from its silhouette instead of face by face ([`parts`]): a
+//!    finely meshed dish over the bus would otherwise cut the bus's top into hundreds of
+//!    pieces. That area is exact — no rays, no tolerance — and costs a few polygon splits
+//!    per blocker.
+//! 5. **Sampling** ([`sampler`]): faces nearly edge-on to a direction (the projection
+//!    stretches without bound) or cut into too many pieces are sampled with rays instead,
+//!    refining each triangle adaptively (4-way splits) until either the samples agree or a
+//!    leaf is small enough that mis-classifying all of it stays within the tolerance's
+//!    share of the epoch's signal. The sampler has known limits that clipping does not: a
+//!    shadow narrower than its caster's bounding radius, or a shadow corner, can fall
+//!    between agreeing samples; and f32 rays at grazing incidence on a neighbour miss some
+//!    hits (measured on the box-wing's dish, checked against f64 intersection).
 //!
-//! Faces nearly edge-on to a direction (the projection stretches without bound) or cut
-//! into too many pieces are **sampled** with rays instead, refining each triangle
-//! adaptively (4-way splits) until either the samples agree or a leaf is small enough
-//! that mis-classifying all of it stays within the tolerance's share of the epoch's
-//! signal. The sampler has known limits that clipping does not: a shadow narrower than
-//! its caster's bounding radius, or a shadow corner, can fall between agreeing samples;
-//! and f32 rays at grazing incidence on a neighbour miss some hits (measured on the
-//! box-wing's dish, checked against f64 intersection).
+//! What the steps share is built once per request ([`Visibility::build`]): each face's
+//! geometry ([`face`]), the patches and which may block which, the convex parts with their
+//! shadows, planes and normal cones, the caps' trees. The tests check each step against
+//! f64 rays and against plain face-by-face clipping (`oracle`, test builds only).
 
 mod blockers;
 mod caps;
@@ -100,8 +115,7 @@ const EARTH: usize = 2;
 /// A face of no convex part (in [`Visibility::part_of`]).
 const NO_PART: u32 = u32::MAX;
 
-/// Ray-casting state built once per request. The per-epoch blocker search
-/// ([`grid`]) and the ray sampler ([`sampler`]) have their own modules.
+/// What every step needs of the mesh, built once per request ([`Visibility::build`]).
 pub struct Visibility {
     mode: VisibilityMode,
     /// Ray casting, for the faces that clipping leaves to sampling.
@@ -347,13 +361,7 @@ impl Visibility {
         let f = &self.faces[face];
         let n = f.normal * side;
         if self.mode == VisibilityMode::Centroid {
-            for c in &f.pieces {
-                let bits = s.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
-                let a = triangle_area(c);
-                s.a_sun += a * (bits & 1) as f64;
-                s.a_earth += a * ((bits >> 1) & 1) as f64;
-            }
-            return (s.a_sun, s.a_earth, s.rays);
+            return s.centroids(&f.pieces);
         }
         let lids = self.collect_blockers(cache, face, side, directions, true, &mut s.blockers);
         if lids[VIEW] == LidState::Closed {

@@ -1,6 +1,7 @@
 //! Adaptive ray sampling of a face's visible area, where exact clipping cannot decide.
 
 use super::blockers::Blocker;
+use super::face::triangle_area;
 use super::proofs::reaches;
 use super::{EARTH, SUN, VIEW};
 use crate::geometry::bvh::LazyOccluder;
@@ -78,6 +79,19 @@ impl<'a> Sampler<'a> {
         }
         let sun = self.dirs[SUN].is_some() && clear[SUN];
         (sun as u8) | ((clear[EARTH] as u8) << 1)
+    }
+
+    /// The centroid method: one ray per direction at each of `pieces`' centroids, which
+    /// decides the whole triangle. Seen-and-sunlit and seen-and-earthlit areas (m²), and
+    /// the rays cast.
+    pub(super) fn centroids(&mut self, pieces: &[[DVec3; 3]]) -> (f64, f64, u64) {
+        for c in pieces {
+            let bits = self.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
+            let a = triangle_area(c);
+            self.a_sun += a * (bits & 1) as f64;
+            self.a_earth += a * ((bits >> 1) & 1) as f64;
+        }
+        (self.a_sun, self.a_earth, self.rays)
     }
 
     /// Refines triangle `p`. `values` are corner samples taken by the parent (with its

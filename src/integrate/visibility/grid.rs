@@ -42,7 +42,7 @@ impl Projection {
         }));
     }
 
-    /// [`reaches`] from the projected spheres: `o`'s sphere meets the cylinder that `f`'s
+    /// [`super::proofs::reaches`] from the projected spheres: `o`'s sphere meets the cylinder that `f`'s
     /// sweeps along the direction. In the basis (u, w, d), w_vec − d·max(w_vec·d, 0) has
     /// the across components and the depth difference only when it is negative.
     #[inline]

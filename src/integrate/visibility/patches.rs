@@ -101,7 +101,7 @@ impl PatchWithinPart {
 
     /// [`relation`] of patch `q` to the planes of patch `p` where both lie in one convex
     /// part in front of all of p's faces: every vertex of the part lies in front of or
-    /// within the tolerance of each of its faces' planes (what [`convex_parts`] checked,
+    /// within the tolerance of each of its faces' planes (what [`crate::geometry::convex::convex_parts`] checked,
     /// by the same test), so q's do, and q is in front. (Behind would need one vertex
     /// beyond the tolerance, which the check does not record.)
     fn relation(&self, q: usize, p: usize) -> Option<Side> {

@@ -285,6 +285,7 @@ enum Along<'a> {
 /// patch and side last searched, and the faces seen along each direction.
 #[derive(Default)]
 pub(super) struct SearchScratch {
+    /// The receiver patch, and whether its front side, that the results below are for.
     key: Option<(u32, bool)>,
     /// Flagged occluder patches for view, sun, earth (None: not computed yet).
     flagged: [Option<Vec<u32>>; 3],

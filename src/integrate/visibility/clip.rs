@@ -35,7 +35,7 @@ pub(super) struct ShadowBuffers {
 
 /// Above this many convex pieces per face, shadows are sampled instead of clipped (the
 /// 16×48 dish of `examples/scale` needs up to a few hundred).
-pub(super) const MAX_PIECES: usize = 4096;
+const MAX_PIECES: usize = 4096;
 
 /// Shadows along directions closer than this cosine to a face's plane are cast as if
 /// from this cosine: the projection stretches by 1/cos, and 1e6 keeps f64 coordinates
@@ -62,7 +62,7 @@ pub(super) fn above_horizon(d: DVec3, n: DVec3) -> DVec3 {
 /// The part of a convex polygon (vertices with heights `h`) at height above `tol`, as
 /// its projected vertices in `out` (the projection is affine, so clipping before or after
 /// it is the same).
-pub(super) fn clip_above(poly: &[(DVec2, f64)], tol: f64, out: &mut Vec<DVec2>) {
+fn clip_above(poly: &[(DVec2, f64)], tol: f64, out: &mut Vec<DVec2>) {
     out.clear();
     let n = poly.len();
     for i in 0..n {

@@ -22,7 +22,7 @@ pub(super) struct Patch {
     pub(super) faces: Range<u32>,
 }
 
-pub(super) fn patch_of(faces: &[FaceGeom], range: Range<u32>) -> Patch {
+fn patch_of(faces: &[FaceGeom], range: Range<u32>) -> Patch {
     let pts = || {
         faces.iter().flat_map(|f| {
             [
@@ -63,7 +63,7 @@ pub(super) fn patch_of(faces: &[FaceGeom], range: Range<u32>) -> Patch {
 }
 
 /// The distinct vertices of a patch's faces.
-pub(super) fn patch_points(geoms: &[FaceGeom], patch: &Patch) -> Points {
+fn patch_points(geoms: &[FaceGeom], patch: &Patch) -> Points {
     let mut v: Vec<DVec3> = patch
         .faces
         .clone()

@@ -56,7 +56,7 @@ impl<'a> Sampler<'a> {
     /// Bit 0: seen and sunlit; bit 1: seen and earthlit (or earthshine unshadowed).
     /// Rays are cast only for the directions in `check`.
     #[inline]
-    pub(super) fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
+    fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
         // A sample on the face's edge may lie in the plane of a neighbour that shares the
         // edge; a ray from there would hit that neighbour at t ≈ 0. Nudge it into the face
         // by the ray offset (scaled to the object) so edges see what the face's interior sees.

@@ -9,7 +9,7 @@
 //! faces themselves. On the 48×128 dish that replaces 6,000 face tests per direction by a
 //! few hundred ball tests.
 
-use super::FaceGeom;
+use super::face::FaceGeom;
 use crate::geometry::convex::{ConvexPart, Lid, LidPoint, LidView};
 use glam::{DVec2, DVec3};
 
@@ -311,5 +311,110 @@ impl CapStates {
             self.dir = Some(d);
         }
         &self.states
+    }
+}
+
+/// Per face: its place in its cap's tree order (0 for a face of no cap).
+pub(super) fn slots(trees: &[Option<CapTree>], faces: usize) -> Vec<u32> {
+    let mut cap_slot = vec![0; faces];
+    for tree in trees.iter().flatten() {
+        for (i, &f) in tree.order.iter().enumerate() {
+            cap_slot[f as usize] = i as u32;
+        }
+    }
+    cap_slot
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::clip::{ShadowBuffers, MIN_COS_EXACT};
+    use super::super::oracle::*;
+    use super::*;
+    use crate::geometry::builtin;
+
+    #[test]
+    fn a_caps_tree_decides_its_faces_as_rays_from_them_do() {
+        // The tree's verdicts (balls decided whole, then faces, then shared vertices)
+        // against rays: from points of each face, along random directions, against the
+        // dish alone. Open: every ray leaves; closed: none does. Points are inset by 1 %
+        // towards the centroid and directions kept 0.05 off the lid's plane, so f32 rays
+        // are not asked about rays grazing the rim or the face. Also: the tree gives each face the
+        // verdict that testing the face alone gives (its ball, then its vertices), and a
+        // face closed by its corners lets no area through the lid.
+        let mesh = builtin::box_wing_with(16, 48, 0);
+        let vis = visibility_of(mesh.clone());
+        let cap = vis
+            .parts
+            .iter()
+            .position(|p| p.lid.is_some())
+            .expect("the dish") as u32;
+        let lid = vis.parts[cap as usize].lid.as_ref().expect("lid");
+        let tree = vis.cap_trees[cap as usize].as_ref().expect("tree");
+        let mut dish = crate::geometry::Mesh::default();
+        dish.vertices = mesh.vertices.clone();
+        dish.triangles = mesh
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&v| mesh.vertices[v as usize].z > 1.2 + 1e-9))
+            .copied()
+            .collect();
+        dish.material_ids = vec![0; dish.triangles.len()];
+        let rays = crate::geometry::bvh::Occluder::build(&dish);
+        let mut rnd = crate::test_rng(44);
+        let mut states = CapStates::default();
+        let mut seen = [0usize; 3];
+        let mut by_corners = 0;
+        for _ in 0..60 {
+            let d = loop {
+                let d = DVec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0);
+                if d.length() > 0.1 && d.length() < 1.0 && d.normalize().dot(lid.normal) > 0.05 {
+                    break d.normalize();
+                }
+            };
+            let verdicts = states.along(tree, lid, d, vis.tol).to_vec();
+            for (&face, &state) in tree.order.iter().zip(&verdicts) {
+                let f = &vis.faces[face as usize];
+                let inner = if f.lid_side[0] { f.normal } else { -f.normal };
+                match lid.classify(f.centroid, f.radius, d, vis.tol) {
+                    Some(true) => assert_eq!(state, LidState::Open, "face {face} along {d}"),
+                    Some(false) => assert_eq!(state, LidState::Closed, "face {face} along {d}"),
+                    None if f.vertices.iter().all(|v| lid.passes(*v, d, vis.tol)) => {
+                        assert_eq!(state, LidState::Open, "face {face} along {d}")
+                    }
+                    // closed by its corners all lying beyond one rim edge's or corner's
+                    // line: then the face seen along d misses the lid exactly
+                    None => {
+                        assert_ne!(state, LidState::Open, "face {face} along {d}");
+                        // (where d clears the face's horizon: below MIN_COS_EXACT the
+                        // area is taken along a bent direction, whose light is ~nil)
+                        if state == LidState::Closed && inner.dot(d) > MIN_COS_EXACT {
+                            by_corners += 1;
+                            let mut x = ShadowBuffers::default();
+                            if let Some(a) = vis.area_through_lid(&mut x, face as usize, inner, d) {
+                                assert!(a <= 1e-12 * f.area, "face {face} along {d}: {a}");
+                            }
+                        }
+                    }
+                }
+                seen[state as usize] += 1;
+                if state == LidState::Clip {
+                    continue;
+                }
+                if inner.dot(d) < 0.05 {
+                    continue; // along d the face's inner side sees nothing (nor is asked)
+                }
+                for v in &f.vertices {
+                    let p = *v + (f.centroid - *v) * 0.01;
+                    assert_eq!(
+                        rays.is_clear(p, inner, d),
+                        state == LidState::Open,
+                        "face {face} ({state:?}) point {p} along {d}"
+                    );
+                }
+            }
+        }
+        // every verdict was exercised, closed by corners too
+        assert!(seen.iter().all(|&n| n > 100), "{seen:?}");
+        assert!(by_corners > 100, "{by_corners}");
     }
 }

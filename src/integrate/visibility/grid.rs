@@ -1,7 +1,8 @@
 //! Per-epoch acceleration of the blocker search: every face's bounding sphere seen
 //! along a direction ([`Projection`]), and faces binned on the plane across it ([`FaceGrid`]).
 
-use super::FaceGeom;
+use super::face::FaceGeom;
+use crate::geometry::Faces;
 use glam::{DVec2, DVec3};
 
 /// Last-query marks per face, so a face in several cells is returned once.
@@ -41,7 +42,7 @@ impl Projection {
         }));
     }
 
-    /// [`reaches`] from the projected spheres: `o`'s sphere meets the cylinder that `f`'s
+    /// [`super::proofs::reaches`] from the projected spheres: `o`'s sphere meets the cylinder that `f`'s
     /// sweeps along the direction. In the basis (u, w, d), w_vec − d·max(w_vec·d, 0) has
     /// the across components and the depth difference only when it is negative.
     #[inline]
@@ -215,9 +216,17 @@ impl FaceGrid {
     }
 }
 
+/// Cell size of the per-epoch face grids, m: the median face diameter (at least 1e-9 of
+/// the object's radius `scale`).
+pub(super) fn cell_size(faces: &Faces, scale: f64) -> f64 {
+    let mut d: Vec<f64> = faces.faces.iter().map(|f| 2.0 * f.radius).collect();
+    d.sort_by(f64::total_cmp);
+    d.get(d.len() / 2).copied().unwrap_or(1.0).max(1e-9 * scale)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::super::reaches;
+    use super::super::proofs::reaches;
     use super::*;
 
     fn face_at(centroid: DVec3, radius: f64) -> FaceGeom {

@@ -14,7 +14,8 @@
 //! A part cut by a face's plane is not used when it is a cap whose section by the plane
 //! overlaps the face: a point of the face inside the hull may see out through the lid.
 
-use super::FaceGeom;
+use super::face::{sort_dedup, FaceGeom};
+use super::NO_PART;
 use crate::geometry::convex::ConvexPart;
 use crate::geometry::mesh::Points;
 use crate::geometry::polygon::{convex_hull, HullIndices, Region};
@@ -41,6 +42,52 @@ pub(super) fn spheres(parts: &[ConvexPart]) -> Vec<(DVec3, f64)> {
     parts
         .iter()
         .map(|p| crate::geometry::mesh::bounding_sphere(&p.vertices))
+        .collect()
+}
+
+/// Each part's vertices, and each face's part (`NO_PART` for none), with what its part
+/// says of its sides: facing into a cap (`lid_side`), out of the part (`own_outside`).
+pub(super) fn assign(parts: &mut [ConvexPart], geoms: &mut [FaceGeom]) -> Vec<u32> {
+    // A part's hull needs only its faces' corners: a subdivided side adds none.
+    for part in parts.iter_mut() {
+        let mut corners: Vec<DVec3> = part
+            .faces
+            .iter()
+            .flat_map(|&f| geoms[f as usize].vertices.iter().copied())
+            .collect();
+        sort_dedup(&mut corners);
+        part.vertices = corners;
+    }
+    let mut part_of = vec![NO_PART; geoms.len()];
+    for (k, part) in parts.iter().enumerate() {
+        for (&f, &ahead) in part.faces.iter().zip(&part.hull_ahead) {
+            part_of[f as usize] = k as u32;
+            let g = &mut geoms[f as usize];
+            if part.lid.is_some() {
+                g.lid_side = [ahead, !ahead && g.two_sided];
+            }
+            g.own_outside = [!ahead, ahead];
+        }
+    }
+    part_of
+}
+
+/// Each part's bounding box as its 8 corners, m.
+pub(super) fn boxes(parts: &[ConvexPart]) -> Vec<[DVec3; 8]> {
+    parts
+        .iter()
+        .map(|p| {
+            let (lo, hi) = p
+                .vertices
+                .iter()
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(*v), hi.max(*v))
+                });
+            std::array::from_fn(|i| {
+                let pick = |bit: usize, axis: usize| if i & bit == 0 { lo[axis] } else { hi[axis] };
+                DVec3::new(pick(1, 0), pick(2, 1), pick(4, 2))
+            })
+        })
         .collect()
 }
 
@@ -166,7 +213,7 @@ fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> V
             }
         }
     }
-    super::sort_dedup(&mut out);
+    sort_dedup(&mut out);
     out
 }
 
@@ -622,56 +669,4 @@ pub(super) fn cover_candidates(
             })
         })
         .collect()
-}
-
-/// Every patch's faces grouped by part: `faces` holds them patch after patch, each
-/// patch's ordered by part (faces of no part last), and `runs[p]` lists patch p's groups
-/// as (part, range of `faces`), so a search can pass over the parts it leaves out whole.
-#[derive(Debug, Default)]
-pub(super) struct PatchParts {
-    pub(super) faces: Vec<u32>,
-    pub(super) runs: Vec<Vec<(u32, std::ops::Range<u32>)>>,
-}
-
-impl PatchParts {
-    pub(super) fn new(patches: &[super::Patch], part_of: &[u32]) -> PatchParts {
-        let mut out = PatchParts::default();
-        for p in patches {
-            let start = out.faces.len();
-            out.faces.extend(p.faces.clone());
-            // stable: faces keep their (spatial) order within a part
-            out.faces[start..].sort_by_key(|&f| part_of[f as usize]);
-            let mut runs: Vec<(u32, std::ops::Range<u32>)> = Vec::new();
-            for i in start..out.faces.len() {
-                let part = part_of[out.faces[i] as usize];
-                match runs.last_mut() {
-                    Some((q, r)) if *q == part => r.end = i as u32 + 1,
-                    _ => runs.push((part, i as u32..i as u32 + 1)),
-                }
-            }
-            out.runs.push(runs);
-        }
-        out
-    }
-
-    /// Patch `p`'s faces outside the parts `left_out` says no to.
-    pub(super) fn faces<'a>(
-        &'a self,
-        p: u32,
-        left_out: impl Fn(u32) -> bool + 'a,
-    ) -> impl Iterator<Item = u32> + 'a {
-        self.runs[p as usize]
-            .iter()
-            .filter(move |(part, _)| !left_out(*part))
-            .flat_map(|(_, r)| self.faces[r.start as usize..r.end as usize].iter().copied())
-    }
-
-    /// How many faces [`PatchParts::faces`] gives.
-    pub(super) fn count(&self, p: u32, left_out: impl Fn(u32) -> bool) -> usize {
-        self.runs[p as usize]
-            .iter()
-            .filter(|(part, _)| !left_out(*part))
-            .map(|(_, r)| r.len())
-            .sum()
-    }
 }

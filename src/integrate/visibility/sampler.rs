@@ -1,6 +1,9 @@
 //! Adaptive ray sampling of a face's visible area, where exact clipping cannot decide.
 
-use super::{reaches, Blocker};
+use super::blockers::Blocker;
+use super::face::triangle_area;
+use super::proofs::reaches;
+use super::{EARTH, SUN, VIEW};
 use crate::geometry::bvh::LazyOccluder;
 use glam::DVec3;
 
@@ -53,7 +56,7 @@ impl<'a> Sampler<'a> {
     /// Bit 0: seen and sunlit; bit 1: seen and earthlit (or earthshine unshadowed).
     /// Rays are cast only for the directions in `check`.
     #[inline]
-    pub(super) fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
+    fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
         // A sample on the face's edge may lie in the plane of a neighbour that shares the
         // edge; a ray from there would hit that neighbour at t ≈ 0. Nudge it into the face
         // by the ray offset (scaled to the object) so edges see what the face's interior sees.
@@ -69,13 +72,26 @@ impl<'a> Sampler<'a> {
             if let (true, Some(d)) = (c, d) {
                 self.rays += 1;
                 clear[k] = self.occluder.get().is_clear(p, self.n, d);
-                if k == 0 && !clear[0] {
+                if k == VIEW && !clear[VIEW] {
                     return 0; // hidden from the observer: nothing else matters
                 }
             }
         }
-        let sun = self.dirs[1].is_some() && clear[1];
-        (sun as u8) | ((clear[2] as u8) << 1)
+        let sun = self.dirs[SUN].is_some() && clear[SUN];
+        (sun as u8) | ((clear[EARTH] as u8) << 1)
+    }
+
+    /// The centroid method: one ray per direction at each of `pieces`' centroids, which
+    /// decides the whole triangle. Seen-and-sunlit and seen-and-earthlit areas (m²), and
+    /// the rays cast.
+    pub(super) fn centroids(&mut self, pieces: &[[DVec3; 3]]) -> (f64, f64, u64) {
+        for c in pieces {
+            let bits = self.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
+            let a = triangle_area(c);
+            self.a_sun += a * (bits & 1) as f64;
+            self.a_earth += a * ((bits >> 1) & 1) as f64;
+        }
+        (self.a_sun, self.a_earth, self.rays)
     }
 
     /// Refines triangle `p`. `values` are corner samples taken by the parent (with its
@@ -108,7 +124,7 @@ impl<'a> Sampler<'a> {
         }
         if check == [false; 3] {
             // proven clear: seen, and lit by whatever lights the face
-            self.a_sun += if self.dirs[1].is_some() { area } else { 0.0 };
+            self.a_sun += if self.dirs[SUN].is_some() { area } else { 0.0 };
             self.a_earth += area;
             return;
         }

@@ -28,6 +28,9 @@ pub struct Grid {
     counts: Vec<u32>,
     /// The polygons binned (a buffer kept from direction to direction).
     kept: Vec<u32>,
+    /// Per polygon: the last segment query that met it, and the current query's number.
+    seen: Vec<u32>,
+    query: u32,
 }
 
 /// What the grid needs of the mesh: its faces as convex polygons (a face's outline when
@@ -202,7 +205,7 @@ impl Grid {
     /// `eps`, within `tol` across d.
     #[allow(clippy::too_many_arguments)]
     pub fn shadowed_by(
-        &self,
+        &mut self,
         mesh: &Polygons,
         a: DVec3,
         b: DVec3,
@@ -215,23 +218,49 @@ impl Grid {
         let (pb, _) = self.project(b);
         let lo = pa.min(pb) - DVec2::splat(tol);
         let hi = pa.max(pb) + DVec2::splat(tol);
-        let (x0, y0) = self.cell_of(lo);
-        let (x1, y1) = self.cell_of(hi);
-        let single = x0 == x1 && y0 == y1;
+        let (_, y0) = self.cell_of(lo);
+        let (_, y1) = self.cell_of(hi);
+        // each polygon once per segment, however many of its cells the segment passes
+        self.query = self.query.wrapping_add(1);
+        if self.query == 0 {
+            self.seen.iter_mut().for_each(|s| *s = 0);
+            self.query = 1;
+        }
+        self.seen.resize(self.boxes.len(), 0);
+        let cell = 1.0 / self.inv_cell;
         for y in y0..=y1 {
+            // the cells of this row that the segment passes within tol of: a long
+            // diagonal edge visits the cells along it, not its whole box
+            let (ylo, yhi) = (
+                self.lo.y + y as f64 * cell - tol,
+                self.lo.y + (y + 1) as f64 * cell + tol,
+            );
+            let dy = pb.y - pa.y;
+            let (t0, t1) = if dy == 0.0 {
+                (0.0, 1.0)
+            } else {
+                let (ta, tb) = ((ylo - pa.y) / dy, (yhi - pa.y) / dy);
+                (ta.min(tb).max(0.0), ta.max(tb).min(1.0))
+            };
+            if t0 > t1 {
+                continue;
+            }
+            let (xa, xb) = (pa.x + (pb.x - pa.x) * t0, pa.x + (pb.x - pa.x) * t1);
+            let (x0, _) = self.cell_of(DVec2::new(xa.min(xb) - tol, ylo));
+            let (x1, _) = self.cell_of(DVec2::new(xa.max(xb) + tol, ylo));
             for x in x0..=x1 {
-                for &t in self.cell(x, y) {
+                let c = y * self.nx + x;
+                for &t in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
                     let ti = t as usize;
+                    if self.seen[ti] == self.query {
+                        continue;
+                    }
+                    self.seen[ti] = self.query;
                     if !receives(ti) {
                         continue;
                     }
                     let (plo, phi) = self.boxes[ti];
                     if plo.cmpgt(hi).any() || phi.cmplt(lo).any() {
-                        continue;
-                    }
-                    // a polygon in several cells: tested in the first cell of the query's
-                    // box that holds it
-                    if !single && !self.first_cell(ti, (x, y), (x0, y0)) {
                         continue;
                     }
                     let corners = mesh.corners(ti);
@@ -290,11 +319,5 @@ impl Grid {
             let e = self.at[corners[(k + 1) % n] as usize] - self.at[corners[k] as usize];
             separated(e.perp())
         })
-    }
-
-    /// Is `(x, y)` the first cell, within the query box from `from`, of triangle `tri`?
-    fn first_cell(&self, t: usize, (x, y): (usize, usize), from: (usize, usize)) -> bool {
-        let (a, _) = self.cell_box(t);
-        (x, y) == (a.0.max(from.0), a.1.max(from.1))
     }
 }

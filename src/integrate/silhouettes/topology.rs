@@ -529,4 +529,107 @@ mod tests {
         let (p, q) = meet(&plate, &pierce, 1e-9).expect("pierces");
         assert!(((p - q).length() - 0.2).abs() < 1e-12);
     }
+
+    /// The topology of `mesh` (faces merged), with every face one-sided or two-sided.
+    fn topology_of(mesh: &Mesh, two_sided: bool) -> Topology {
+        let faces = Faces::build(mesh, true);
+        let mut tri_face = vec![0u32; mesh.triangles.len()];
+        for (i, f) in faces.faces.iter().enumerate() {
+            for &t in &f.triangles {
+                tri_face[t as usize] = i as u32;
+            }
+        }
+        Topology::build(mesh, &faces, &tri_face, &vec![two_sided; faces.len()], 1e-9)
+    }
+
+    /// An L-shaped prism, 1 m high: its footprint (0,0) (2,0) (2,1) (1,1) (1,2) (0,2) turns
+    /// inward at (1,1), so its vertical edge there is its one valley.
+    fn l_prism() -> Mesh {
+        let foot = [
+            (0.0, 0.0),
+            (2.0, 0.0),
+            (2.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 2.0),
+            (0.0, 2.0),
+        ];
+        let mut vertices: Vec<DVec3> = foot.iter().map(|&(x, y)| DVec3::new(x, y, 0.0)).collect();
+        vertices.extend(foot.iter().map(|&(x, y)| DVec3::new(x, y, 1.0)));
+        // the footprint fanned from its reflex corner (3), counter-clockwise from above
+        let fan = [[3, 4, 5], [3, 5, 0], [3, 0, 1], [3, 1, 2]];
+        let mut triangles: Vec<[u32; 3]> = Vec::new();
+        for [a, b, c] in fan {
+            triangles.push([a + 6, b + 6, c + 6]); // top, facing +z
+            triangles.push([a, c, b]); // bottom, facing -z
+        }
+        for i in 0..6u32 {
+            let j = (i + 1) % 6;
+            triangles.push([i, j, j + 6]);
+            triangles.push([i, j + 6, i + 6]);
+        }
+        let n = triangles.len();
+        Mesh {
+            vertices,
+            triangles,
+            material_ids: vec![0; n],
+        }
+    }
+
+    fn valleys(t: &Topology) -> Vec<(DVec3, DVec3)> {
+        t.edges
+            .iter()
+            .filter(|e| e.valley)
+            .map(|e| (e.a, e.b))
+            .collect()
+    }
+
+    #[test]
+    fn a_closed_solid_turns_inward_only_along_its_valleys() {
+        let mesh = l_prism();
+        let v = valleys(&topology_of(&mesh, false));
+        assert_eq!(v.len(), 1, "{v:?}");
+        let (a, b) = v[0];
+        // the vertical edge at the reflex corner
+        for p in [a, b] {
+            assert!(
+                (p.x - 1.0).abs() < 1e-15 && (p.y - 1.0).abs() < 1e-15,
+                "{p}"
+            );
+        }
+        assert!(((a - b).length() - 1.0).abs() < 1e-15);
+        // inside out (its solid is everything else), or two-sided (no solid): no valleys,
+        // since a valley's shadow is known to run inside the solid only when there is one
+        let inverted = Mesh {
+            triangles: mesh.triangles.iter().map(|&[a, b, c]| [a, c, b]).collect(),
+            ..mesh.clone()
+        };
+        assert!(valleys(&topology_of(&inverted, false)).is_empty());
+        assert!(valleys(&topology_of(&mesh, true)).is_empty());
+    }
+
+    #[test]
+    fn a_finely_meshed_box_meets_each_side_along_one_edge() {
+        let mut mesh = Mesh::default();
+        crate::geometry::builtin::push_grid_box(
+            &mut mesh,
+            DVec3::ZERO,
+            DVec3::new(3.0, 2.0, 1.0),
+            [7, 5, 3],
+            0,
+        );
+        let t = topology_of(&mesh, false);
+        // 12 box edges, each whole (the runs of short edges along it joined), none a valley
+        assert_eq!(t.edges.len(), 12);
+        let mut lengths: Vec<f64> = t.edges.iter().map(|e| (e.a - e.b).length()).collect();
+        lengths.sort_by(f64::total_cmp);
+        let want = [1.0, 1.0, 1.0, 1.0, 2.0, 2.0, 2.0, 2.0, 3.0, 3.0, 3.0, 3.0];
+        for (l, w) in lengths.iter().zip(want) {
+            assert!((l - w).abs() < 1e-12, "{lengths:?}");
+        }
+        assert!(t.edges.iter().all(|e| !e.valley && !e.always));
+        // each side meets its four neighbours
+        for f in 0..6 {
+            assert_eq!(t.neighbours(f).len(), 4);
+        }
+    }
 }

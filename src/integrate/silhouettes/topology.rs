@@ -333,10 +333,11 @@ fn contact_segments(
     let mid = sizes.len() / 2;
     sizes.select_nth_unstable_by(mid, f64::total_cmp);
     let extent = (hi - lo).max(DVec3::splat(tol));
-    // at most ~4M cells (the bins' offsets), and at most 1024 along an axis
+    // at most ~8 cells a triangle (a finely meshed dish beside long panels would
+    // otherwise ask for millions of empty cells), and at most 1024 along an axis
     let volume = extent.x * extent.y * extent.z;
     let cell = sizes[mid]
-        .max((volume / 4.0e6).cbrt())
+        .max((volume / (8.0 * nt as f64).min(4.0e6)).cbrt())
         .max(extent.max_element() / 1024.0)
         .max(tol);
     let dims =
@@ -376,24 +377,32 @@ fn contact_segments(
             fill[k] += 1;
         }
     }
-    // per triangle s, the later triangles t sharing a cell with it (each once), tested in
-    // order of t: the pairs (s, t) in the order a sort of them would give
-    let per_triangle: Vec<Vec<(u32, (DVec3, DVec3))>> = (0..nt)
+    // each pair sharing a cell is tested once, by the triangle of the two that spans fewer
+    // cells (a large panel's triangle is found by the small ones in its cells, instead of
+    // scanning them all), and the pairs are then put in order
+    let spans: Vec<u32> = (0..nt)
+        .map(|t| {
+            let (a, z) = (index(boxes[t].0), index(boxes[t].1));
+            (z - a + glam::UVec3::ONE).element_product()
+        })
+        .collect();
+    let mut pairs: Vec<(u32, u32, (DVec3, DVec3))> = (0..nt)
         .into_par_iter()
         .map_init(
             || (vec![u32::MAX; nt], Vec::new()),
             |(stamp, near), s| {
                 near.clear();
+                let mine = (spans[s], s);
                 for c in cells_of(s) {
                     let k = linear(c);
                     for &t in &binned[start[k] as usize..start[k + 1] as usize] {
-                        if t as usize > s && stamp[t as usize] != s as u32 {
-                            stamp[t as usize] = s as u32;
+                        let ti = t as usize;
+                        if ti != s && mine < (spans[ti], ti) && stamp[ti] != s as u32 {
+                            stamp[ti] = s as u32;
                             near.push(t);
                         }
                     }
                 }
-                near.sort_unstable();
                 let mut found = Vec::new();
                 for &t in near.iter() {
                     let t = t as usize;
@@ -411,20 +420,21 @@ fn contact_segments(
                     if shares {
                         continue;
                     }
-                    if let Some(seg) = meet(&corners[s], &corners[t], tol) {
-                        found.push((t as u32, seg));
+                    let (lo, hi) = (s.min(t), s.max(t));
+                    if let Some(seg) = meet(&corners[lo], &corners[hi], tol) {
+                        found.push((lo as u32, hi as u32, seg));
                     }
                 }
                 found
             },
         )
+        .flatten()
         .collect();
-    let mut out = Vec::new();
-    for (s, found) in per_triangle.into_iter().enumerate() {
-        for (t, seg) in found {
-            out.push((tri_face[s], seg));
-            out.push((tri_face[t as usize], seg));
-        }
+    pairs.sort_unstable_by_key(|p| (p.0, p.1));
+    let mut out = Vec::with_capacity(2 * pairs.len());
+    for (s, t, seg) in pairs {
+        out.push((tri_face[s as usize], seg));
+        out.push((tri_face[t as usize], seg));
     }
     out
 }

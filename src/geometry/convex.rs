@@ -28,26 +28,23 @@ pub fn is_convex(mesh: &Mesh, faces: &Faces) -> bool {
     };
     if work <= CHEAP_EXACT {
         exact()
-    } else if locally_convex_and_closed(mesh, tol) {
+    } else if locally_convex_and_closed(mesh, faces, tol) {
         true
     } else {
         work <= EXACT_LIMIT && exact()
     }
 }
 
-fn locally_convex_and_closed(mesh: &Mesh, tol: f64) -> bool {
-    use std::collections::HashMap;
-    let mut edges: HashMap<(u32, u32), Vec<(u32, u32)>> = HashMap::new();
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            edges
-                .entry((a.min(b), a.max(b)))
-                .or_default()
-                .push((t as u32, tri[(k + 2) % 3]));
-        }
-    }
-    // one connected surface: two convex bodies side by side can shadow each other
+fn locally_convex_and_closed(mesh: &Mesh, faces: &Faces, tol: f64) -> bool {
+    // the welded edges that merging faces sorted (or sorted here): the triangles sharing
+    // an edge side by side, so no hash map of edges
+    let own;
+    let (welded, sorted) = if faces.edges.is_empty() {
+        own = mesh.welded_edges();
+        (&own.0, &own.1)
+    } else {
+        (&faces.welded, &faces.edges)
+    };
     let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
     fn root(p: &mut [u32], mut x: u32) -> u32 {
         while p[x as usize] != x {
@@ -56,25 +53,29 @@ fn locally_convex_and_closed(mesh: &Mesh, tol: f64) -> bool {
         }
         x
     }
-    for adj in edges.values() {
-        if let [(a, _), (b, _)] = adj[..] {
-            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-            parent[ra.max(rb) as usize] = ra.min(rb);
-        }
-    }
-    if (0..parent.len() as u32).any(|t| root(&mut parent, t) != 0) {
-        return false;
-    }
-    edges.values().all(|adj| {
-        if adj.len() != 2 {
-            return false; // open or non-manifold: leave it to the rays
-        }
-        let (t0, _) = adj[0];
-        let (_, opposite1) = adj[1];
+    // every edge shared by exactly two triangles (else open or non-manifold: leave it to
+    // the rays), and the second's far corner not in front of the first's plane; the first
+    // edge that fails ends the test (a rocket body's open skirt, a fragment's first dent)
+    for shared in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        let [(wa, wb, t0), (_, _, t1)] = shared[..] else {
+            return false;
+        };
+        let far = mesh.triangles[t1 as usize]
+            .iter()
+            .find(|&&v| welded[v as usize] != wa && welded[v as usize] != wb);
+        let Some(&far) = far else {
+            return false; // a degenerate triangle along the edge
+        };
         let n = mesh.area_vector(t0 as usize).normalize();
         let p = mesh.vertices[mesh.triangles[t0 as usize][0] as usize];
-        n.dot(mesh.vertices[opposite1 as usize] - p) <= tol
-    })
+        if n.dot(mesh.vertices[far as usize] - p) > tol {
+            return false;
+        }
+        let (ra, rb) = (root(&mut parent, t0), root(&mut parent, t1));
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    }
+    // one connected surface: two convex bodies side by side can shadow each other
+    (0..parent.len() as u32).all(|t| root(&mut parent, t) == 0)
 }
 
 /// True when every vertex lies in one plane (a flat plate, even two-sided, cannot
@@ -946,6 +947,29 @@ fn pseudo_angle(r: glam::DVec2) -> f64 {
 mod tests {
     use super::*;
     use crate::geometry::builtin;
+
+    #[test]
+    fn a_finely_meshed_sphere_is_convex_by_its_edges_and_a_dent_or_a_second_one_is_not() {
+        // 20·4^5 = 20,480 triangles: faces × vertices is past the exact test's cheap limit,
+        // so the edge test decides
+        let sphere = builtin::icosphere(5, 1.0);
+        let faces = |m: &Mesh| Faces::build(m, true);
+        assert!(sphere.triangles.len() * sphere.vertices.len() > CHEAP_EXACT);
+        assert!(is_convex(&sphere, &faces(&sphere)));
+        // one vertex pushed in by 1 % of the radius: a dent
+        let mut dented = sphere.clone();
+        dented.vertices[100] *= 0.99;
+        assert!(!is_convex(&dented, &faces(&dented)));
+        // two spheres side by side: each locally convex, together not
+        let mut two = sphere.clone();
+        let n = two.vertices.len() as u32;
+        two.vertices
+            .extend(sphere.vertices.iter().map(|v| *v + glam::DVec3::X * 3.0));
+        two.triangles
+            .extend(sphere.triangles.iter().map(|t| t.map(|i| i + n)));
+        two.material_ids.extend(sphere.material_ids.iter().copied());
+        assert!(!is_convex(&two, &faces(&two)));
+    }
 
     /// The box-wing dish's lid, with a 7-gon squeezed off-centre for a lid whose inner
     /// and outer circles are far apart.

@@ -250,7 +250,8 @@ pub struct EpochSpec {
 #[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct IlluminationSpec {
-    /// Spectral band [λ1, λ2] in µm. Default [0.4, 0.7].
+    /// Spectral band [λ1, λ2] in µm. Default [0.4, 0.7]. The Sun's irradiance in it at 1 AU
+    /// must be at least 1e-200 W/m² (not so only far in the Wien tail of a cold Sun).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub band_um: Option<[f64; 2]>,
     /// Sun blackbody temperature in K. Default 5900 (the paper's value).

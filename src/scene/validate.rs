@@ -1,13 +1,13 @@
 //! Request → Scene: every input checked at the boundary, every error naming its field.
 
 use super::request::{
-    EpochSpec, ExposureSpec, MaterialObject, MaterialSpec, MeshSpec, Request, ThumbnailSpec,
-    TimeSpec,
+    EpochSpec, ExposureSpec, MaterialObject, MaterialSpec, MeshSpec, Request, ShadowingSpec,
+    ThumbnailSpec, TimeSpec,
 };
 use super::{
     presets, EarthshineModel, Epoch, Exposure, Illumination, Material, Method, Scene, Thumbnails,
 };
-use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet};
+use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet, Shadowing};
 use crate::geometry::{builtin, obj, Mesh};
 use crate::radiometry::{planck, AU_M, EARTH_RADIUS_M, SUN_RADIUS_M};
 use glam::{DQuat, DVec3};
@@ -602,20 +602,21 @@ fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationErro
 /// Rejects parameters that the model does not use, naming the first one.
 fn only(field: &str, m: &MaterialObject, allowed: &[&str]) -> Result<(), ValidationError> {
     let given = [
-        ("kd", m.kd),
-        ("km", m.km),
-        ("slope_rms", m.slope_rms),
-        ("n", m.n),
-        ("k", m.k),
-        ("albedo", m.albedo),
-        ("alpha", m.alpha),
-        ("rd", m.rd),
-        ("rs", m.rs),
-        ("nu", m.nu),
-        ("nv", m.nv),
+        ("kd", m.kd.is_some()),
+        ("km", m.km.is_some()),
+        ("slope_rms", m.slope_rms.is_some()),
+        ("n", m.n.is_some()),
+        ("k", m.k.is_some()),
+        ("albedo", m.albedo.is_some()),
+        ("alpha", m.alpha.is_some()),
+        ("shadowing", m.shadowing.is_some()),
+        ("rd", m.rd.is_some()),
+        ("rs", m.rs.is_some()),
+        ("nu", m.nu.is_some()),
+        ("nv", m.nv.is_some()),
     ];
-    for (name, v) in given {
-        if v.is_some() && !allowed.contains(&name) {
+    for (name, present) in given {
+        if present && !allowed.contains(&name) {
             let what = m
                 .model
                 .as_deref()
@@ -651,12 +652,19 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
             Ok(Brdf::SeedMicrofacet(SeedMicrofacet::new(kd, km, d, n, k)))
         }
         "rough-conductor" => {
-            only(field, m, &["alpha", "n", "k", "kd"])?;
+            only(field, m, &["alpha", "n", "k", "kd", "shadowing"])?;
             let alpha = in_range(&f("alpha"), req("alpha", m.alpha)?, 1e-6, 10.0)?;
             let n = positive(&f("n"), req("n", m.n)?)?;
             let k = in_range(&f("k"), req("k", m.k)?, 0.0, 1e3)?;
             let kd = in_range(&f("kd"), m.kd.unwrap_or(0.0), 0.0, 1.0)?;
-            Ok(Brdf::RoughConductor(RoughConductor::new(alpha, n, k, kd)))
+            let shadowing = match m.shadowing {
+                None => Shadowing::default(),
+                Some(ShadowingSpec::Separable) => Shadowing::Separable,
+                Some(ShadowingSpec::Correlated) => Shadowing::Correlated,
+            };
+            Ok(Brdf::RoughConductor(
+                RoughConductor::new(alpha, n, k, kd).with_shadowing(shadowing),
+            ))
         }
         "ashikhmin-shirley" => {
             only(field, m, &["rd", "rs", "nu", "nv"])?;

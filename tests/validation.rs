@@ -295,6 +295,39 @@ fn material_errors() {
         },
         "object.materials[0].k",
     );
+    // the rough conductor's Smith form: one of two names, and only for that model
+    let rough =
+        json!({ "name": "a", "model": "rough-conductor", "alpha": 0.1, "n": 1.5, "k": 3.0 });
+    for ok in ["separable", "correlated"] {
+        let mut v = base();
+        v["object"]["materials"][0] = rough.clone();
+        v["object"]["materials"][0]["shadowing"] = json!(ok);
+        check(&v).unwrap_or_else(|e| panic!("{ok}: {e}"));
+    }
+    for bad in [json!("height-correlated"), json!(1)] {
+        let e = expect_field(
+            |v| {
+                v["object"]["materials"][0] = rough.clone();
+                v["object"]["materials"][0]["shadowing"] = bad.clone();
+            },
+            "object.materials[0].shadowing",
+        );
+        assert!(
+            e.message.contains("separable") || e.message.contains("invalid type"),
+            "{e}"
+        );
+    }
+    expect_field(
+        |v| v["object"]["materials"][1]["shadowing"] = json!("separable"),
+        "object.materials[1].shadowing",
+    );
+    expect_field(
+        |v| {
+            v["object"]["materials"][0] =
+                json!({ "name": "a", "preset": "seed-body-wrap", "shadowing": "correlated" })
+        },
+        "object.materials[0].shadowing",
+    );
     expect_field(
         |v| v["object"]["materials"][0] = json!({ "name": "a", "model": "ashikhmin-shirley", "rd": 0.3, "rs": 0.1, "nu": -5, "nv": 5 }),
         "object.materials[0].nu",

@@ -11,7 +11,7 @@ pub mod sun_disk;
 
 pub use ashikhmin_shirley::AshikhminShirley;
 pub use lambert::Lambert;
-pub use rough_conductor::RoughConductor;
+pub use rough_conductor::{RoughConductor, Shadowing};
 pub use seed_microfacet::SeedMicrofacet;
 
 use glam::DVec3;

@@ -1,15 +1,15 @@
 //! Request → Scene: every input checked at the boundary, every error naming its field.
 
 use super::request::{
-    EpochSpec, ExposureSpec, MaterialObject, MaterialSpec, MeshSpec, Request, ThumbnailSpec,
-    TimeSpec,
+    EpochSpec, ExposureSpec, MaterialObject, MaterialSpec, MeshSpec, Request, ShadowingSpec,
+    ThumbnailSpec, TimeSpec,
 };
 use super::{
     presets, EarthshineModel, Epoch, Exposure, Illumination, Material, Method, Scene, Thumbnails,
 };
-use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet};
+use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet, Shadowing};
 use crate::geometry::{builtin, obj, Mesh};
-use crate::radiometry::{AU_M, EARTH_RADIUS_M};
+use crate::radiometry::{planck, AU_M, EARTH_RADIUS_M, SUN_RADIUS_M};
 use glam::{DQuat, DVec3};
 use std::fmt;
 
@@ -423,6 +423,11 @@ fn fidelity(
     Ok(out)
 }
 
+/// The least band irradiance of the Sun at 1 AU a request may ask for, W/m²: a scene's
+/// geometry (albedo × area / range²) can take another hundred decades off it before f64
+/// underflows, where a magnitude would turn `null` although light arrives.
+pub const MIN_SUN_BAND_1AU_W_M2: f64 = 1e-200;
+
 fn illumination(req: &Request) -> Result<Illumination, ValidationError> {
     let mut out = Illumination::default();
     let Some(spec) = &req.illumination else {
@@ -441,6 +446,22 @@ fn illumination(req: &Request) -> Result<Illumination, ValidationError> {
     }
     if let Some(t) = spec.sun_temperature_k {
         out.sun_temperature_k = in_range("illumination.sun_temperature_k", t, 100.0, 100_000.0)?;
+    }
+    // A band far in the Wien tail of a cold Sun (0.01–0.05 µm at 300 K: ~1e-410 W/m²)
+    // holds light that no f64 can carry through a scene: say so rather than answer 0.
+    let [a, b] = out.band_um;
+    let t = out.sun_temperature_k;
+    let ln_es = planck::ln_band_exitance(a, b, t) + 2.0 * (SUN_RADIUS_M / AU_M).ln();
+    if ln_es < MIN_SUN_BAND_1AU_W_M2.ln() {
+        return err(
+            "illumination.band_um",
+            format!(
+                "[{a}, {b}] µm holds almost none of a {t} K Sun's light: its irradiance at \
+                 1 AU would be 1e{:.0} W/m², below the {MIN_SUN_BAND_1AU_W_M2:e} W/m² that \
+                 f64 radiometry carries through a scene; choose a longer band or a hotter Sun",
+                ln_es / std::f64::consts::LN_10
+            ),
+        );
     }
     if let Some(e) = &spec.earthshine {
         out.earthshine = match e.as_str() {
@@ -581,20 +602,21 @@ fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationErro
 /// Rejects parameters that the model does not use, naming the first one.
 fn only(field: &str, m: &MaterialObject, allowed: &[&str]) -> Result<(), ValidationError> {
     let given = [
-        ("kd", m.kd),
-        ("km", m.km),
-        ("slope_rms", m.slope_rms),
-        ("n", m.n),
-        ("k", m.k),
-        ("albedo", m.albedo),
-        ("alpha", m.alpha),
-        ("rd", m.rd),
-        ("rs", m.rs),
-        ("nu", m.nu),
-        ("nv", m.nv),
+        ("kd", m.kd.is_some()),
+        ("km", m.km.is_some()),
+        ("slope_rms", m.slope_rms.is_some()),
+        ("n", m.n.is_some()),
+        ("k", m.k.is_some()),
+        ("albedo", m.albedo.is_some()),
+        ("alpha", m.alpha.is_some()),
+        ("shadowing", m.shadowing.is_some()),
+        ("rd", m.rd.is_some()),
+        ("rs", m.rs.is_some()),
+        ("nu", m.nu.is_some()),
+        ("nv", m.nv.is_some()),
     ];
-    for (name, v) in given {
-        if v.is_some() && !allowed.contains(&name) {
+    for (name, present) in given {
+        if present && !allowed.contains(&name) {
             let what = m
                 .model
                 .as_deref()
@@ -630,12 +652,19 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
             Ok(Brdf::SeedMicrofacet(SeedMicrofacet::new(kd, km, d, n, k)))
         }
         "rough-conductor" => {
-            only(field, m, &["alpha", "n", "k", "kd"])?;
+            only(field, m, &["alpha", "n", "k", "kd", "shadowing"])?;
             let alpha = in_range(&f("alpha"), req("alpha", m.alpha)?, 1e-6, 10.0)?;
             let n = positive(&f("n"), req("n", m.n)?)?;
             let k = in_range(&f("k"), req("k", m.k)?, 0.0, 1e3)?;
             let kd = in_range(&f("kd"), m.kd.unwrap_or(0.0), 0.0, 1.0)?;
-            Ok(Brdf::RoughConductor(RoughConductor::new(alpha, n, k, kd)))
+            let shadowing = match m.shadowing {
+                None => Shadowing::default(),
+                Some(ShadowingSpec::Separable) => Shadowing::Separable,
+                Some(ShadowingSpec::Correlated) => Shadowing::Correlated,
+            };
+            Ok(Brdf::RoughConductor(
+                RoughConductor::new(alpha, n, k, kd).with_shadowing(shadowing),
+            ))
         }
         "ashikhmin-shirley" => {
             only(field, m, &["rd", "rs", "nu", "nv"])?;

@@ -31,6 +31,8 @@ pub struct Grid {
     /// Per polygon: the last segment query that met it, and the current query's number.
     seen: Vec<u32>,
     query: u32,
+    /// Per binned polygon: its first and last cells (a buffer kept between directions).
+    spans: Vec<[u32; 4]>,
 }
 
 /// What the grid needs of the mesh: its faces as convex polygons (a face's outline when
@@ -83,7 +85,7 @@ impl Grid {
         let mut kept = std::mem::take(&mut self.kept);
         kept.clear();
         kept.extend((0..mesh.len() as u32).filter(|&t| keep(t as usize)));
-        self.boxes.clear();
+        // only the binned polygons' boxes are ever read (through the cells)
         self.boxes.resize(
             mesh.len(),
             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::INFINITY)),
@@ -109,8 +111,12 @@ impl Grid {
         let n = self.nx * self.ny;
         self.counts.clear();
         self.counts.resize(n + 1, 0);
+        // each polygon's cells, found once for both passes of the counting sort
+        let mut spans = std::mem::take(&mut self.spans);
+        spans.clear();
         for &t in &kept {
             let (a, b) = self.cell_box(t as usize);
+            spans.push([a.0 as u32, a.1 as u32, b.0 as u32, b.1 as u32]);
             for y in a.1..=b.1 {
                 for x in a.0..=b.0 {
                     self.counts[y * self.nx + x + 1] += 1;
@@ -124,16 +130,16 @@ impl Grid {
         self.start.extend_from_slice(&self.counts);
         self.items.clear();
         self.items.resize(self.counts[n] as usize, 0);
-        for &t in &kept {
-            let (a, b) = self.cell_box(t as usize);
-            for y in a.1..=b.1 {
-                for x in a.0..=b.0 {
+        for (&t, &[x0, y0, x1, y1]) in kept.iter().zip(&spans) {
+            for y in y0 as usize..=y1 as usize {
+                for x in x0 as usize..=x1 as usize {
                     let c = y * self.nx + x;
                     self.items[self.counts[c] as usize] = t;
                     self.counts[c] += 1;
                 }
             }
         }
+        self.spans = spans;
         self.kept = kept;
     }
 

@@ -89,6 +89,8 @@ pub struct Direction {
     /// (face, edge) for every silhouette edge whose shadow crosses the face, sorted.
     pairs: Vec<(u32, u32)>,
     silhouette: Vec<bool>,
+    /// Per face: it faces along d.
+    facing: Vec<bool>,
     queue: Vec<u32>,
     /// Rays cast for this direction's groups (one per group), and whether this epoch
     /// asked for the direction (its groups' rays count for the epoch even when kept
@@ -221,12 +223,6 @@ impl<'a> Silhouettes<'a> {
         }
     }
 
-    /// Does face `f` take light from (or look along) `d`, on either of its sides?
-    fn faces_along(&self, f: usize, d: DVec3) -> bool {
-        let c = self.face_normal[f].dot(d);
-        c > 0.0 || (self.two_sided[f] && c < 0.0)
-    }
-
     /// Brings `scratch`'s direction `k` (0 view, 1 Sun, 2 Earth) to `d` for this epoch.
     pub fn prepare(&self, scratch: &mut Scratch, k: usize, d: Option<DVec3>) {
         let dir = &mut scratch.dirs[k];
@@ -242,7 +238,12 @@ impl<'a> Silhouettes<'a> {
         dir.rays = 0;
         let mesh = self.polygons();
         let open = &self.topo.open;
-        let facing = |f: u32| self.face_normal[f as usize].dot(d) > 0.0;
+        // which faces face along d, found once for the grid, the statuses and the edges
+        dir.facing.clear();
+        dir.facing
+            .extend(self.face_normal.iter().map(|n| n.dot(d) > 0.0));
+        let facing_of = &dir.facing;
+        let facing = |f: u32| facing_of[f as usize];
         // a closed piece blocks a ray only where the ray leaves it: through a face
         // facing along d
         dir.grid.build(&mesh, d, |p| {
@@ -252,7 +253,9 @@ impl<'a> Silhouettes<'a> {
         let nf = self.face_normal.len();
         dir.status.clear();
         dir.status.extend((0..nf).map(|f| {
-            if !self.faces_along(f, d) {
+            // on either side (a two-sided face's back faces along d too)
+            let along = facing(f as u32) || (self.two_sided[f] && self.face_normal[f].dot(d) < 0.0);
+            if !along {
                 OFF
             } else if self.topo.contacts_at[f] != self.topo.contacts_at[f + 1] {
                 EDGE

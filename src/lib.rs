@@ -1,6 +1,6 @@
 //! glint: photometric light curves of space objects.
 //!
-//! The physics (PHYSICS.md) lives in [`radiometry`], [`brdf`], [`geometry`] and
+//! The physics (docs/physics.md) lives in [`radiometry`], [`brdf`], [`geometry`] and
 //! [`integrate`]; [`scene`] holds the request/response types and their validation;
 //! [`report`] writes CSV and plots. The command line ([`cli`]) and the HTTP service
 //! ([`service`]) are thin doors onto the same [`simulate`].

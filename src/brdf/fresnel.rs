@@ -2,7 +2,7 @@
 //!
 //! The paper's Eq. 8 is the real-angle form, which has no meaning for the metallic
 //! indices of its own validation (n = 0.18 + 3.60i). We use the exact complex form
-//! (PHYSICS.md §3), which reduces to Eq. 8 for real η and has no 0/0 at normal incidence.
+//! (docs/physics.md §6.1), which reduces to Eq. 8 for real η and has no 0/0 at normal incidence.
 
 use num_complex::Complex64;
 

@@ -1,6 +1,6 @@
 //! Reflectance models. Each evaluates the *projected* BRDF f·cosθi·cosθr (sr⁻¹):
 //! Eq. 10 multiplies f_r by both cosines, so evaluating the product directly keeps
-//! every model finite at grazing angles (PHYSICS.md §3) — no division by a cosine.
+//! every model finite at grazing angles (docs/physics.md §6) — no division by a cosine.
 
 pub mod ashikhmin_shirley;
 pub mod fresnel;

@@ -1,4 +1,4 @@
-//! The paper's microfacet BRDF (Eqs. 6–8), as PHYSICS.md §3 restates it:
+//! The paper's microfacet BRDF (Eqs. 6–8), as docs/physics.md §6.2 gives it:
 //! f = k^D/π + k^M·C·V·F/(cosθi·cosθr), evaluated as the projected product
 //! f·cosθi·cosθr = k^D/π·cosθi·cosθr + k^M·C·V·F, which is finite at grazing angles.
 

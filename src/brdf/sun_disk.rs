@@ -1,4 +1,4 @@
-//! The Sun as a disk for narrow specular lobes (PHYSICS.md §3, "δ → 0").
+//! The Sun as a disk for narrow specular lobes (docs/physics.md §7).
 //!
 //! A point Sun makes the glint of a mirror-smooth face (slope_rms ~1e-4) a spike far
 //! narrower than the Sun's disk (angular radius ρ ≈ 4.65e-3 rad at 1 AU): epochs either

@@ -5,7 +5,7 @@
 //! - `Sphere`: the Earth as a Lambertian sphere of radius R_E, each point of its visible
 //!   disk radiating ρE_s·max(0, cos z)/π (z: solar zenith angle there). The visible cap is
 //!   integrated as an extended source by a quadrature uniform in solid angle, so it is
-//!   right in LEO where the Earth fills much of the sky (PHYSICS.md §2).
+//!   right in LEO where the Earth fills much of the sky (docs/physics.md §5).
 
 use super::EARTH_RADIUS_M;
 use glam::DVec3;
@@ -63,7 +63,7 @@ pub fn sphere(earth: DVec3, sun_dir: DVec3, albedo: f64, sun_irradiance: f64) ->
     let cos_a = (1.0 - sin_a * sin_a).max(0.0).sqrt();
     // Rings uniform in cosγ (equal solid angle) and sectors in azimuth; more of both
     // when the Earth looks large. The midpoint rule in cosγ integrates the cosine-
-    // weighted cap exactly for uniform radiance (the view-factor check in PHYSICS.md).
+    // weighted cap exactly for uniform radiance (the view-factor check in docs/physics.md §5).
     let angular_radius = sin_a.asin();
     let rings = ((angular_radius / 0.05).ceil() as usize).clamp(4, 16);
     let sectors = (rings * 4).max(16);

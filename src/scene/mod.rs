@@ -38,7 +38,7 @@ pub struct Epoch {
     pub earth: Option<DVec3>,
 }
 
-/// Earthshine model (PHYSICS.md §2).
+/// Earthshine model (docs/physics.md §5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EarthshineModel {
     Off,

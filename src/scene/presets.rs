@@ -10,7 +10,7 @@ pub struct Preset {
     pub brdf: fn() -> Brdf,
 }
 
-/// The presets. The paper prints "C_r" where the slope δ is meant (PHYSICS.md §3).
+/// The presets. The paper prints "C_r" where the slope δ is meant (docs/physics.md §6.2).
 pub const PRESETS: &[Preset] = &[
     Preset {
         name: "seed-body-wrap",

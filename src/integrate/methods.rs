@@ -4,8 +4,9 @@
 //!
 //! | method     | fidelity setting                          | cost grows with          |
 //! |------------|-------------------------------------------|--------------------------|
+//! | `silhouette` | none: exact                             | faces, and shadow lines  |
 //! | `adaptive` | `tolerance` (relative)                    | partly shadowed faces    |
-//! | `auto`     | `tolerance` (convex meshes: none needed)  | as adaptive, or nothing  |
+//! | `auto`     | none (convex: no rays; else silhouette)   | as silhouette, or faces  |
 //! | `centroid` | `centroid_subdivisions` k (4^k triangles) | triangles × 4^k          |
 //! | `image`    | `image_size` × `image_samples`            | pixels × samples²        |
 //! | `convex`   | none                                      | faces                    |

@@ -602,3 +602,29 @@ fn builtin_detail_levels() {
         }
     }
 }
+
+/// Eq. 12 is a far-field sum: an observer inside the object's bounding sphere (1 mm from
+/// a 1 m plate, or a unit direction given where a position in metres is meant, for a mesh
+/// larger than a metre) is refused, naming the epoch's field; just outside it is accepted.
+#[test]
+fn an_observer_inside_the_objects_bounding_sphere_is_refused() {
+    // the base mesh spans the unit cube's corner: centre (0.5, 0.5, 0.5), radius √3/2
+    let e = expect_field(
+        |v| v["epochs"][1]["observer"] = json!([0.5, 0.5, 0.501]),
+        "epochs[1].observer",
+    );
+    assert!(e.message.contains("bounding radius"), "{e}");
+    // a unit vector where metres are meant, for a 10 m object
+    expect_field(
+        |v| {
+            v["object"]["mesh"]["vertices"] =
+                json!([[0, 0, 0], [10, 0, 0], [0, 10, 0], [0, 0, 10]]);
+            v["epochs"][0]["observer"] = json!([0, 0.6, 0.8]);
+        },
+        "epochs[0].observer",
+    );
+    // 1 m beyond the sphere: a position, accepted
+    let mut v = base();
+    v["epochs"][1]["observer"] = json!([0.5, 0.5, 0.5 + 0.75f64.sqrt() + 1.0]);
+    check(&v).expect("an observer outside the bounding sphere is valid");
+}

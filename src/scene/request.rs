@@ -273,7 +273,8 @@ pub struct EpochSpec {
     pub t: TimeSpec,
     /// Direction from the object to the Sun (any length; normalised).
     pub sun: [f64; 3],
-    /// Vector from the object to the observer, metres; its length is the range R.
+    /// Vector from the object to the observer, metres; its length is the range R. It must
+    /// lie outside the mesh's bounding sphere (Eq. 12 is a far-field sum).
     pub observer: [f64; 3],
     /// Vector from the object to the Earth's centre, metres. Needed for earthshine and eclipses.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -196,12 +196,26 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         .as_ref()
         .and_then(|i| i.earthshine.as_ref())
         .is_some();
+    // Eq. 12 is a far-field sum (every face seen along one direction, at one range): an
+    // observer inside the object's bounding sphere is no telescope
+    let (centre, radius) = mesh.bounding_sphere();
     let epochs = req
         .epochs
         .iter()
         .enumerate()
         .map(|(i, e)| {
             let ep = epoch(&format!("epochs[{i}]"), e)?;
+            let range = (ep.observer - centre).length();
+            if range <= radius {
+                return err(
+                    format!("epochs[{i}].observer"),
+                    format!(
+                        "the observer is {range:.3e} m from the object's centre, within its \
+                         bounding radius {radius:.3e} m: give the observer's position \
+                         relative to the object, in metres, from outside it"
+                    ),
+                );
+            }
             if ep.earth.is_none()
                 && earthshine_explicit
                 && illumination.earthshine != EarthshineModel::Off

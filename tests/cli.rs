@@ -36,7 +36,7 @@ fn epochs_in(path: &str) -> usize {
 }
 
 /// The per-epoch fields, in the response's order.
-const COLUMNS: [&str; 11] = [
+const COLUMNS: [&str; 12] = [
     "t",
     "irradiance_w_m2",
     "sun_w_m2",
@@ -48,6 +48,7 @@ const COLUMNS: [&str; 11] = [
     "range_m",
     "lit_visible_area_m2",
     "eclipse",
+    "earth_blocks_view",
 ];
 
 #[test]

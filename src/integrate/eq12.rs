@@ -284,14 +284,19 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         lit_visible_area,
     } = sums;
     let intensity = sun_sum + earth_sum;
-    let irradiance = intensity / r2;
+    // the Earth across the line of sight: the object shines, but not on this observer
+    let blocked = epoch
+        .earth
+        .is_some_and(|e| crate::radiometry::earth::hides_observer(e, epoch.observer));
+    let seen = if blocked { 0.0 } else { 1.0 };
+    let irradiance = seen * intensity / r2;
     let mag = magnitude::apparent(irradiance, p.sun_band_1au);
     (
         EpochResult {
             t: epoch.t,
             irradiance_w_m2: irradiance,
-            sun_w_m2: sun_sum / r2,
-            earthshine_w_m2: earth_sum / r2,
+            sun_w_m2: seen * sun_sum / r2,
+            earthshine_w_m2: seen * earth_sum / r2,
             intensity_w_sr: intensity,
             magnitude: mag,
             magnitude_std: magnitude::standardised(mag, range),
@@ -299,6 +304,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             range_m: range,
             lit_visible_area_m2: lit_visible_area,
             eclipse: hidden,
+            earth_blocks_view: blocked,
         },
         rays,
     )

@@ -112,3 +112,62 @@ pub fn orthonormal_basis(n: DVec3) -> (DVec3, DVec3) {
         DVec3::new(b, sign + n.y * n.y * a, -n.y),
     )
 }
+
+/// Height above the mean sphere (m) within which an observer counts as on the ground: the
+/// ellipsoid departs from the sphere by up to 21 km, and sites stand up to ~5 km high.
+pub const GROUND_MARGIN_M: f64 = 30e3;
+
+/// Does the Earth hide the object from the observer? `earth` and `observer` are the
+/// vectors from the object to the Earth's centre and to the observer, m. An observer on
+/// the ground (within [`GROUND_MARGIN_M`] of the mean sphere, or below it) sees the object
+/// when it is above the local horizon (geocentric: the sphere's normal, within 0.2° of the
+/// ellipsoid's); one in space when the segment between them clears the sphere of radius
+/// [`EARTH_RADIUS_M`].
+pub fn hides_observer(earth: DVec3, observer: DVec3) -> bool {
+    let up = observer - earth;
+    if up.length() <= EARTH_RADIUS_M + GROUND_MARGIN_M {
+        // towards the object from the observer is −observer
+        return (-observer).dot(up) < 0.0;
+    }
+    let len2 = observer.length_squared();
+    if len2 == 0.0 {
+        return false;
+    }
+    let t = (earth.dot(observer) / len2).clamp(0.0, 1.0);
+    (earth - observer * t).length() < EARTH_RADIUS_M
+}
+
+#[cfg(test)]
+mod line_of_sight_tests {
+    use super::*;
+
+    const R: f64 = EARTH_RADIUS_M;
+
+    #[test]
+    fn the_earth_hides_an_observer_behind_it_and_below_the_horizon() {
+        // an object 500 km up over the +z pole: the Earth's centre is below it
+        let earth = DVec3::new(0.0, 0.0, -(R + 500e3));
+        // in space: a GEO observer on the far side is hidden, one on the near side or
+        // beyond the limb is not
+        let geo = 42_164e3;
+        assert!(hides_observer(earth, earth + DVec3::new(0.0, 0.0, -geo)));
+        assert!(!hides_observer(earth, earth + DVec3::new(0.0, 0.0, geo)));
+        assert!(!hides_observer(earth, earth + DVec3::new(geo, 0.0, 0.0)));
+        // on the ground: the sub-object site sees it overhead; a site 10° away sees it
+        // (elevation ~52°); one 30° away does not (its geometric horizon is at ~21.9°
+        // from the sub-point for a 500 km orbit); the antipode does not
+        let site = |deg: f64| {
+            let a = deg.to_radians();
+            earth + DVec3::new(a.sin(), 0.0, a.cos()) * R
+        };
+        assert!(!hides_observer(earth, site(0.0)));
+        assert!(!hides_observer(earth, site(10.0)));
+        assert!(!hides_observer(earth, site(21.0)));
+        assert!(hides_observer(earth, site(23.0)));
+        assert!(hides_observer(earth, site(30.0)));
+        assert!(hides_observer(earth, site(180.0)));
+        // a site on the ellipsoid's pole, 21 km inside the mean sphere, still sees an
+        // object overhead
+        assert!(!hides_observer(earth, earth + DVec3::Z * (R - 21e3)));
+    }
+}

@@ -4,7 +4,7 @@ use crate::scene::Response;
 use std::fmt::Write;
 
 /// Column names, in order.
-pub const HEADER: &str = "t,irradiance_w_m2,sun_w_m2,earthshine_w_m2,intensity_w_sr,magnitude,magnitude_std,phase_angle_deg,range_m,lit_visible_area_m2,eclipse";
+pub const HEADER: &str = "t,irradiance_w_m2,sun_w_m2,earthshine_w_m2,intensity_w_sr,magnitude,magnitude_std,phase_angle_deg,range_m,lit_visible_area_m2,eclipse,earth_blocks_view";
 
 /// CSV text with a header; an absent magnitude (no light) is an empty cell.
 pub fn to_csv(response: &Response) -> String {
@@ -15,7 +15,7 @@ pub fn to_csv(response: &Response) -> String {
     for e in &response.epochs {
         let _ = writeln!(
             s,
-            "{},{:e},{:e},{:e},{:e},{},{},{:.6},{:.6e},{:.6e},{:.6}",
+            "{},{:e},{:e},{:e},{:e},{},{},{:.6},{:.6e},{:.6e},{:.6},{}",
             e.t,
             e.irradiance_w_m2,
             e.sun_w_m2,
@@ -26,7 +26,8 @@ pub fn to_csv(response: &Response) -> String {
             e.phase_angle_deg,
             e.range_m,
             e.lit_visible_area_m2,
-            e.eclipse
+            e.eclipse,
+            u8::from(e.earth_blocks_view)
         );
     }
     s

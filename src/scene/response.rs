@@ -56,6 +56,11 @@ pub struct EpochResult {
     pub lit_visible_area_m2: f64,
     /// Fraction of the solar disk hidden by the Earth (0 sunlit, 1 umbra).
     pub eclipse: f64,
+    /// The Earth lies across the line of sight (the segment from the object to the
+    /// observer passes through it): nothing reaches the observer, so the irradiances are 0
+    /// and the magnitudes `null` (`intensity_w_sr` is still the object's). `false` when the
+    /// epoch gives no `earth`.
+    pub earth_blocks_view: bool,
 }
 
 /// How the light curve was computed.

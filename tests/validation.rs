@@ -628,3 +628,26 @@ fn an_observer_inside_the_objects_bounding_sphere_is_refused() {
     v["epochs"][1]["observer"] = json!([0.5, 0.5, 0.5 + 0.75f64.sqrt() + 1.0]);
     check(&v).expect("an observer outside the bounding sphere is valid");
 }
+
+/// A mesh in metres but absurdly large (1e100 m) is refused for its size, not as "zero
+/// area" through an overflow; the same triangle listed twice (same winding) is refused,
+/// two triangles back to back (a thin plate) are not.
+#[test]
+fn huge_coordinates_and_duplicated_triangles_are_named() {
+    let e = expect_field(
+        |v| v["object"]["mesh"]["vertices"][1] = json!([1e100, 0, 0]),
+        "object.mesh.vertices[1]",
+    );
+    assert!(e.message.contains("metres"), "{e}");
+    // triangle 1 repeats triangle 0, rotated (same winding)
+    expect_field(
+        |v| {
+            v["object"]["mesh"]["triangles"] = json!([[0, 1, 2], [1, 2, 0]]);
+        },
+        "object.mesh.triangles[1]",
+    );
+    // back to back: kept
+    let mut v = base();
+    v["object"]["mesh"]["triangles"] = json!([[0, 1, 2], [0, 2, 1]]);
+    check(&v).expect("two triangles back to back are a thin plate");
+}

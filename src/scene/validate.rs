@@ -695,6 +695,9 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
     }
 }
 
+/// Largest mesh coordinate accepted, m.
+const MAX_COORDINATE_M: f64 = 1e12;
+
 fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh, ValidationError> {
     let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
     let forms = [
@@ -837,6 +840,45 @@ fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh
             return err(
                 format!("object.mesh.triangles[{i}]"),
                 format!("vertex index {bad} out of range (there are {nv} vertices)"),
+            );
+        }
+    }
+    // Metres: beyond 1e12 m (7 AU) the squares of the triangles' areas overflow f64 and
+    // every triangle would look degenerate; no object in orbit comes near it.
+    if let Some(i) = mesh
+        .vertices
+        .iter()
+        .position(|v| v.abs().max_element() > MAX_COORDINATE_M)
+    {
+        return err(
+            format!("object.mesh.vertices[{i}]"),
+            format!("a coordinate beyond {MAX_COORDINATE_M:e} m: give the mesh in metres"),
+        );
+    }
+    // The same triangle twice (same corners, same winding) would count its light twice;
+    // two triangles back to back (opposite windings) are a thin plate, and are kept.
+    {
+        let welded = mesh.welded_ids();
+        let mut keyed: Vec<([u32; 3], usize)> = mesh
+            .triangles
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let w = t.map(|k| welded[k as usize]);
+                // rotated to start at its least corner: the winding kept
+                let r = (0..3).min_by_key(|&k| w[k]).unwrap_or(0);
+                ([w[r], w[(r + 1) % 3], w[(r + 2) % 3]], i)
+            })
+            .collect();
+        keyed.sort_unstable();
+        if let Some(pair) = keyed.windows(2).find(|p| p[0].0 == p[1].0) {
+            let (a, b) = (pair[0].1.min(pair[1].1), pair[0].1.max(pair[1].1));
+            return err(
+                format!("object.mesh.triangles[{b}]"),
+                format!(
+                    "has the same corners, wound the same way, as triangles[{a}]: its light \
+                     would be counted twice"
+                ),
             );
         }
     }

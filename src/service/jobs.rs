@@ -13,6 +13,7 @@
 use super::errors::ApiError;
 use super::limits::{ServiceLimits, Slots};
 use super::metrics::Metrics;
+pub use super::record::{JobRecord, JobState};
 use super::store::{Store, StoreError};
 use crate::integrate::{simulate_with, Cancelled, Progress};
 use crate::scene::{validate, Scene};
@@ -23,60 +24,6 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 use tokio::sync::{mpsc, Notify, Semaphore};
 use utoipa::ToSchema;
-
-/// Where a job is in its life.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, ToSchema)]
-#[serde(rename_all = "lowercase")]
-pub enum JobState {
-    Queued,
-    Running,
-    Done,
-    Failed,
-    Cancelled,
-}
-
-impl JobState {
-    pub const ALL: [JobState; 5] = [
-        JobState::Queued,
-        JobState::Running,
-        JobState::Done,
-        JobState::Failed,
-        JobState::Cancelled,
-    ];
-
-    /// Done, failed or cancelled: the job will not run again.
-    pub fn is_final(self) -> bool {
-        matches!(
-            self,
-            JobState::Done | JobState::Failed | JobState::Cancelled
-        )
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            JobState::Queued => "queued",
-            JobState::Running => "running",
-            JobState::Done => "done",
-            JobState::Failed => "failed",
-            JobState::Cancelled => "cancelled",
-        }
-    }
-}
-
-/// A job as stored on disk (timestamps in Unix milliseconds).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct JobRecord {
-    pub id: String,
-    pub state: JobState,
-    pub epochs_total: usize,
-    pub epochs_done: usize,
-    pub created_ms: i64,
-    pub started_ms: Option<i64>,
-    pub finished_ms: Option<i64>,
-    pub error: Option<String>,
-    /// How many times the job was started (more than 1 after a restart mid-run).
-    pub attempts: u32,
-}
 
 /// A job's status as `GET /v1/jobs/{id}` reports it.
 #[derive(Debug, Clone, Serialize, Deserialize, ToSchema, PartialEq)]

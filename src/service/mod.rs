@@ -14,6 +14,7 @@ pub mod jobs;
 pub mod limits;
 pub mod metrics;
 pub mod openapi;
+pub mod record;
 pub mod routes;
 pub mod scenes;
 pub mod store;

@@ -5,7 +5,7 @@
 //! default `Durability::Immediate` (fsync before `commit` returns), so a job whose 202 was
 //! sent is on disk, and a crash (even `kill -9`) loses nothing that was answered.
 
-use super::jobs::JobRecord;
+use super::record::JobRecord;
 use redb::{Database, ReadableDatabase, ReadableTable, TableDefinition};
 use std::path::Path;
 

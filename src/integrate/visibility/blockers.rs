@@ -6,8 +6,8 @@
 
 use super::caps::LidState;
 use super::face::side_index;
+use super::face::PartShadow;
 use super::grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
-use super::parts::PartShadow;
 use super::proofs::{outline_clear, reaches, reaches_front, LARGE_BLOCKER};
 use super::{Cache, Visibility, NO_PART};
 use glam::{DVec2, DVec3};

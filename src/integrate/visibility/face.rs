@@ -2,12 +2,26 @@
 //! vertices, the convex polygons it is clipped and sampled as, and what the convex parts
 //! and caps around it settle for it (filled in by [`super::Visibility::build`]).
 
-use super::parts::PartShadow;
 use super::VisibilityMode;
 use crate::geometry::Faces;
 use crate::scene::Scene;
 use glam::DVec3;
 use rayon::prelude::*;
+
+/// How one convex part shadows one face.
+#[derive(Debug, Clone)]
+pub(super) struct PartShadow {
+    pub(super) part: u32,
+    /// Sides of the face (front, back) whose shadows it casts whole.
+    pub(super) sides: [bool; 2],
+    /// Sides it lies wholly behind: none of its faces can block them.
+    pub(super) behind: [bool; 2],
+    /// The face's plane cuts the part: its shadow is that of the hull's part on the face's
+    /// side, whose corners include `crossings`.
+    pub(super) cut: bool,
+    /// Where the part's edges cross the face's plane, m.
+    pub(super) crossings: Vec<DVec3>,
+}
 
 /// Per-face geometry for the tests.
 pub(super) struct FaceGeom {

@@ -14,28 +14,13 @@
 //! A part cut by a face's plane is not used when it is a cap whose section by the plane
 //! overlaps the face: a point of the face inside the hull may see out through the lid.
 
-use super::face::{sort_dedup, FaceGeom};
+use super::face::{sort_dedup, FaceGeom, PartShadow};
 use super::NO_PART;
 use crate::geometry::convex::ConvexPart;
 use crate::geometry::mesh::Points;
 use crate::geometry::polygon::{convex_hull, HullIndices, Region};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
-
-/// How one convex part shadows one face.
-#[derive(Debug, Clone)]
-pub(super) struct PartShadow {
-    pub(super) part: u32,
-    /// Sides of the face (front, back) whose shadows it casts whole.
-    pub(super) sides: [bool; 2],
-    /// Sides it lies wholly behind: none of its faces can block them.
-    pub(super) behind: [bool; 2],
-    /// The face's plane cuts the part: its shadow is that of the hull's part on the face's
-    /// side, whose corners include `crossings`.
-    pub(super) cut: bool,
-    /// Where the part's edges cross the face's plane, m.
-    pub(super) crossings: Vec<DVec3>,
-}
 
 /// The bounding sphere of each part: centre and radius, m.
 pub(super) fn spheres(parts: &[ConvexPart]) -> Vec<(DVec3, f64)> {

@@ -4,7 +4,7 @@
 //! cone ([`Visibility::flag_patches`]).
 
 use super::face::{sort_dedup, FaceGeom};
-use super::proofs::{cone_clear, may_block, reaches, relation, Side};
+use super::proofs::{may_block, reaches, Side};
 use super::Visibility;
 use crate::geometry::convex::ConvexPart;
 use crate::geometry::mesh::Points;
@@ -219,6 +219,57 @@ impl Visibility {
             })
             .map(|&(p, _)| p)
             .collect()
+    }
+}
+
+/// Patch-level half-space proof: every occluder plane faces away along `d` from a
+/// receiver wholly in front of them all (or towards, from one wholly behind).
+#[inline]
+pub(super) fn cone_clear(side: Side, p: &Patch, d: DVec3) -> bool {
+    match side {
+        Side::Front => d.dot(p.axis) > p.sin_half,
+        Side::Behind => -d.dot(p.axis) > p.sin_half,
+        Side::Mixed => false,
+    }
+}
+
+/// Where the receiver faces lie relative to every plane of the occluder faces.
+pub(super) fn relation(
+    geoms: &[FaceGeom],
+    q: &Patch,
+    q_vertices: &Points,
+    p_faces: &Range<u32>,
+    tol: f64,
+) -> Side {
+    let (mut front, mut behind) = (true, true);
+    for gi in p_faces.clone() {
+        let g = &geoms[gi as usize];
+        // The receiver patch's sphere decides this plane when it settles both flags
+        // (one is usually false already): most planes of a distant patch.
+        let s = g.normal.dot(q.centre - g.centroid);
+        let (sphere_front, sphere_behind) = (s - q.radius >= -tol, s + q.radius <= tol);
+        if (sphere_front || !front) && (sphere_behind || !behind) {
+            front &= sphere_front;
+            behind &= sphere_behind;
+            if !front && !behind {
+                return Side::Mixed;
+            }
+            continue;
+        }
+        // exact: the patch's distinct vertices (faces share theirs)
+        let (ahead, back) = q_vertices.sides(g.normal, g.centroid, tol);
+        front &= !back;
+        behind &= !ahead;
+        if !front && !behind {
+            return Side::Mixed;
+        }
+    }
+    if front {
+        Side::Front
+    } else if behind {
+        Side::Behind
+    } else {
+        Side::Mixed
     }
 }
 

@@ -4,13 +4,11 @@
 //!   cylinder swept by the receiver's bounding sphere along the direction;
 //! - **half-space**: a receiver wholly in front of an occluder's plane, along a direction
 //!   pointing away from it, never meets it ([`reaches_front`], [`relation`] and
-//!   [`cone_clear`] for patches, [`super::blockers::Blocker::half_space_clear`] for faces);
+//!   [`super::patches::cone_clear`] for patches, [`super::blockers::Blocker::half_space_clear`] for faces);
 //! - **outline** ([`outline_clear`]): every line from the receiver meets a large plate's
 //!   plane beyond one edge of its outline.
 
 use super::face::FaceGeom;
-use super::patches::Patch;
-use crate::geometry::mesh::Points;
 use glam::DVec3;
 use std::ops::Range;
 
@@ -32,17 +30,6 @@ pub(super) fn reaches(c_f: DVec3, r_f: f64, c_o: DVec3, r_o: f64, d: DVec3) -> b
     let t = w.dot(d).max(0.0);
     let reach = r_f + r_o;
     (w - d * t).length_squared() < reach * reach
-}
-
-/// Patch-level half-space proof: every occluder plane faces away along `d` from a
-/// receiver wholly in front of them all (or towards, from one wholly behind).
-#[inline]
-pub(super) fn cone_clear(side: Side, p: &Patch, d: DVec3) -> bool {
-    match side {
-        Side::Front => d.dot(p.axis) > p.sin_half,
-        Side::Behind => -d.dot(p.axis) > p.sin_half,
-        Side::Mixed => false,
-    }
 }
 
 /// Can some face of `p_faces` reach the lit/seen side of some face of `q_faces`?
@@ -80,46 +67,6 @@ pub(super) fn reaches_front(o: &FaceGeom, n: DVec3, p: DVec3, tol: f64) -> bool 
         return true; // no vertex list (centroid mode): the sphere's answer
     }
     o.vertices.iter().any(|v| n.dot(*v - p) > tol)
-}
-
-/// Where the receiver faces lie relative to every plane of the occluder faces.
-pub(super) fn relation(
-    geoms: &[FaceGeom],
-    q: &Patch,
-    q_vertices: &Points,
-    p_faces: &Range<u32>,
-    tol: f64,
-) -> Side {
-    let (mut front, mut behind) = (true, true);
-    for gi in p_faces.clone() {
-        let g = &geoms[gi as usize];
-        // The receiver patch's sphere decides this plane when it settles both flags
-        // (one is usually false already): most planes of a distant patch.
-        let s = g.normal.dot(q.centre - g.centroid);
-        let (sphere_front, sphere_behind) = (s - q.radius >= -tol, s + q.radius <= tol);
-        if (sphere_front || !front) && (sphere_behind || !behind) {
-            front &= sphere_front;
-            behind &= sphere_behind;
-            if !front && !behind {
-                return Side::Mixed;
-            }
-            continue;
-        }
-        // exact: the patch's distinct vertices (faces share theirs)
-        let (ahead, back) = q_vertices.sides(g.normal, g.centroid, tol);
-        front &= !back;
-        behind &= !ahead;
-        if !front && !behind {
-            return Side::Mixed;
-        }
-    }
-    if front {
-        Side::Front
-    } else if behind {
-        Side::Behind
-    } else {
-        Side::Mixed
-    }
 }
 
 /// How many times a face's radius a blocker's must be for [`outline_clear`] to be tried:

@@ -1,10 +1,9 @@
 //! Convexity: when no part of the mesh can shadow or hide another, the two cosines
 //! decide everything and no ray need be cast.
 
-use super::faces::Faces;
+use super::faces::{find, union, Faces};
 use super::mesh::Mesh;
 use rayon::prelude::*;
-use std::borrow::Cow;
 
 /// Largest faces × vertices product checked exactly (all vertices behind every face).
 const EXACT_LIMIT: usize = 400_000_000;
@@ -36,23 +35,9 @@ pub fn is_convex(mesh: &Mesh, faces: &Faces) -> bool {
 }
 
 fn locally_convex_and_closed(mesh: &Mesh, faces: &Faces, tol: f64) -> bool {
-    // the welded edges that merging faces sorted (or sorted here): the triangles sharing
-    // an edge side by side, so no hash map of edges
-    let own;
-    let (welded, sorted) = if faces.edges.is_empty() {
-        own = mesh.welded_edges();
-        (&own.0, &own.1)
-    } else {
-        (&faces.welded, &faces.edges)
-    };
+    // the welded edges sorted: the triangles sharing an edge side by side, so no hash map
+    let (welded, sorted) = faces.welded_edges(mesh);
     let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
-    fn root(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            p[x as usize] = p[p[x as usize] as usize];
-            x = p[x as usize];
-        }
-        x
-    }
     // every edge shared by exactly two triangles (else open or non-manifold: leave it to
     // the rays), and the second's far corner not in front of the first's plane; the first
     // edge that fails ends the test (a rocket body's open skirt, a fragment's first dent)
@@ -71,11 +56,10 @@ fn locally_convex_and_closed(mesh: &Mesh, faces: &Faces, tol: f64) -> bool {
         if n.dot(mesh.vertices[far as usize] - p) > tol {
             return false;
         }
-        let (ra, rb) = (root(&mut parent, t0), root(&mut parent, t1));
-        parent[ra.max(rb) as usize] = ra.min(rb);
+        union(&mut parent, t0, t1);
     }
     // one connected surface: two convex bodies side by side can shadow each other
-    (0..parent.len() as u32).all(|t| root(&mut parent, t) == 0)
+    (0..parent.len() as u32).all(|t| find(&mut parent, t) == 0)
 }
 
 /// True when every vertex lies in one plane (a flat plate, even two-sided, cannot
@@ -497,15 +481,7 @@ fn parts_of(mesh: &Mesh, faces: &Faces, tol: f64, by_edges: bool) -> Vec<(Convex
     // the triangles' edges by their welded ends, sorted so that each edge's uses are side
     // by side (a sort, not a hash map of lists: no allocation per edge), as merging faces
     // left them; unmerged faces kept none
-    let (welded, sorted) = if faces.edges.is_empty() {
-        let (welded, sorted) = mesh.welded_edges();
-        (Cow::Owned(welded), Cow::Owned(sorted))
-    } else {
-        (
-            Cow::Borrowed(&faces.welded[..]),
-            Cow::Borrowed(&faces.edges[..]),
-        )
-    };
+    let (welded, sorted) = faces.welded_edges(mesh);
     // each use with its face and whether its triangle runs from the lower end: a shared
     // edge joins two faces
     let edges: Vec<((u32, u32), u32, bool, u32)> = sorted

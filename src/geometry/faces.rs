@@ -8,6 +8,10 @@ use super::mesh::Mesh;
 use crate::radiometry::earth::orthonormal_basis;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::borrow::Cow;
+
+/// An edge by its welded ends (lower first) and one triangle along it.
+pub type WeldedEdge = (u32, u32, u32);
 
 /// One planar face.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,6 +48,17 @@ pub struct Faces {
 const SAME_NORMAL: f64 = 1.0 - 1e-9;
 
 impl Faces {
+    /// The mesh's welded ids and its welded edges, sorted (see `welded`, `edges`): those
+    /// merging kept, or computed here when it kept none (faces built without merging).
+    pub fn welded_edges<'a>(&'a self, mesh: &Mesh) -> (Cow<'a, [u32]>, Cow<'a, [WeldedEdge]>) {
+        if self.edges.is_empty() {
+            let (welded, edges) = mesh.welded_edges();
+            (Cow::Owned(welded), Cow::Owned(edges))
+        } else {
+            (Cow::Borrowed(&self.welded), Cow::Borrowed(&self.edges))
+        }
+    }
+
     /// Groups triangles that share an edge (by vertex position), lie in one plane and
     /// use one material. `merge = false` keeps one face per triangle.
     pub fn build(mesh: &Mesh, merge: bool) -> Faces {

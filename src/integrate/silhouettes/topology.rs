@@ -64,13 +64,8 @@ impl Topology {
         // `two_sided` is per face
         let nt = mesh.triangles.len();
         // the welded edges that merging faces sorted, or sorted here when it did not
-        let own;
-        let (welded, sorted) = if faces.edges.is_empty() {
-            own = mesh.welded_edges();
-            (&own.0, &own.1)
-        } else {
-            (&faces.welded, &faces.edges)
-        };
+        let (welded, sorted) = faces.welded_edges(mesh);
+        let (welded, sorted) = (&welded[..], &sorted[..]);
         // pieces by union-find over shared edges; a piece is open when any edge of it is
         // not shared by exactly two triangles wound the opposite ways
         let mut parent: Vec<u32> = (0..nt as u32).collect();

@@ -210,6 +210,11 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     let mut exact_rays = 0u64;
     if let Some(sil) = &p.silhouettes {
         let s = &mut scratch.silhouettes;
+        let wanted = scratch
+            .lit
+            .iter()
+            .map(|lf| (lf.face, lf.sun > 0.0, lf.earth > 0.0));
+        sil.want(s, wanted);
         sil.prepare(s, 0, Some(v));
         sil.prepare(s, 1, (es > 0.0).then_some(l));
         sil.prepare(s, 2, earthshine.shadow_dir);

@@ -78,6 +78,7 @@ const CLEAR: u8 = 1;
 const DARK: u8 = 2;
 const EDGE: u8 = 3; // a shadow or contact line crosses it: cut into cells
 const UNSET: u8 = 4;
+const SKIP: u8 = 5; // faces along d, but this epoch does not ask about it
 
 /// One direction's state in an epoch (kept for the next epoch when the direction is the
 /// same: a Sun fixed in the body frame).
@@ -103,6 +104,10 @@ pub struct Direction {
 #[derive(Default)]
 pub struct Scratch {
     dirs: [Direction; 3],
+    /// Per face: which directions this epoch asks about (bit k: direction k). Only
+    /// these faces take shadows: a face the observer does not see, or that no light
+    /// reaches, needs no status along any direction.
+    wanted: Vec<u8>,
     cells: Cells,
     lines: Vec<(DVec2, DVec2)>,
     polygon: Vec<DVec2>,
@@ -223,7 +228,19 @@ impl<'a> Silhouettes<'a> {
         }
     }
 
-    /// Brings `scratch`'s direction `k` (0 view, 1 Sun, 2 Earth) to `d` for this epoch.
+    /// Says which faces this epoch will ask [`Silhouettes::areas`] about, and along
+    /// which directions: (face, seen-and-sunlit wanted, seen-and-earthlit wanted). Call
+    /// before [`Silhouettes::prepare`].
+    pub fn want(&self, scratch: &mut Scratch, faces: impl Iterator<Item = (u32, bool, bool)>) {
+        scratch.wanted.clear();
+        scratch.wanted.resize(self.face_normal.len(), 0);
+        for (f, sun, earth) in faces {
+            scratch.wanted[f as usize] = 1 | (sun as u8) << 1 | (earth as u8) << 2;
+        }
+    }
+
+    /// Brings `scratch`'s direction `k` (0 view, 1 Sun, 2 Earth) to `d` for this epoch,
+    /// for the faces [`Silhouettes::want`] named.
     pub fn prepare(&self, scratch: &mut Scratch, k: usize, d: Option<DVec3>) {
         let dir = &mut scratch.dirs[k];
         let Some(d) = d else {
@@ -231,7 +248,17 @@ impl<'a> Silhouettes<'a> {
             return;
         };
         dir.used = true;
-        if dir.d == Some(d) {
+        let bit = 1u8 << k;
+        let wanted = &scratch.wanted;
+        // kept from the last epoch (a Sun fixed in the body frame) when every face asked
+        // about now was decided then
+        if dir.d == Some(d)
+            && !dir
+                .status
+                .iter()
+                .zip(wanted)
+                .any(|(&s, &w)| s == SKIP && w & bit != 0)
+        {
             return;
         }
         dir.d = Some(d);
@@ -257,6 +284,8 @@ impl<'a> Silhouettes<'a> {
             let along = facing(f as u32) || (self.two_sided[f] && self.face_normal[f].dot(d) < 0.0);
             if !along {
                 OFF
+            } else if wanted[f] & bit == 0 {
+                SKIP
             } else if self.topo.contacts_at[f] != self.topo.contacts_at[f + 1] {
                 EDGE
             } else {
@@ -285,7 +314,7 @@ impl<'a> Silhouettes<'a> {
                 e.b,
                 self.eps,
                 self.tol,
-                |p| status[self.poly_face[p] as usize] != OFF,
+                |p| !matches!(status[self.poly_face[p] as usize], OFF | SKIP),
                 |p| pairs.push((self.poly_face[p as usize], i as u32)),
             );
         }
@@ -346,6 +375,7 @@ impl<'a> Silhouettes<'a> {
             } else {
                 match scratch.dirs[k].status[face] {
                     OFF => CLEAR,
+                    SKIP => unreachable!("face {face} was not asked about along direction {k}"),
                     s => s,
                 }
             }

@@ -2,6 +2,7 @@
 //! Eq. 10 multiplies f_r by both cosines, so evaluating the product directly keeps
 //! every model finite at grazing angles (docs/physics.md §6) — no division by a cosine.
 
+pub mod albedo;
 pub mod ashikhmin_shirley;
 pub mod fresnel;
 pub mod lambert;

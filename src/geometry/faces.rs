@@ -5,7 +5,6 @@
 //! triangles (a subdivided box side is one face).
 
 use super::mesh::Mesh;
-use crate::radiometry::earth::orthonormal_basis;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::borrow::Cow;
@@ -18,7 +17,9 @@ pub type WeldedEdge = (u32, u32, u32);
 pub struct Face {
     /// Outward unit normal.
     pub normal: DVec3,
-    /// Unit tangent (for anisotropic BRDFs): the direction of the face's first edge.
+    /// Unit tangent (for anisotropic BRDFs): its material's body-frame axis projected onto
+    /// the face ([`tangent_of`]; the body's x axis until [`Faces::set_tangents`]), not a
+    /// property of vertex order: relisting a triangle's vertices changes nothing.
     pub tangent: DVec3,
     /// Area, m².
     pub area: f64,
@@ -56,6 +57,14 @@ impl Faces {
             (Cow::Owned(welded), Cow::Owned(edges))
         } else {
             (Cow::Borrowed(&self.welded), Cow::Borrowed(&self.edges))
+        }
+    }
+
+    /// Gives each face its tangent from `axis(material)`, a unit body-frame direction
+    /// ([`tangent_of`]).
+    pub fn set_tangents(&mut self, axis: impl Fn(u32) -> DVec3) {
+        for f in &mut self.faces {
+            f.tangent = tangent_of(f.normal, axis(f.material));
         }
     }
 
@@ -165,13 +174,7 @@ impl Face {
             .flat_map(|&t| mesh.corners(t as usize))
             .map(|v| v.distance(centroid))
             .fold(0.0, f64::max);
-        let [p, q, _] = mesh.corners(triangles[0] as usize);
-        let edge = q - p - normal * normal.dot(q - p);
-        let tangent = if edge.length_squared() > 0.0 {
-            edge.normalize()
-        } else {
-            orthonormal_basis(normal).0
-        };
+        let tangent = tangent_of(normal, DVec3::X);
         Face {
             normal,
             tangent,
@@ -214,4 +217,17 @@ fn morton3(x: u32, y: u32, z: u32) -> u64 {
         x
     }
     spread(x) | (spread(y) << 1) | (spread(z) << 2)
+}
+
+/// The tangent a face of unit `normal` takes from its material's unit body-frame `axis`
+/// ([`Face::tangent`]): the axis projected onto the face; where the normal lies within
+/// 8.1° of ±axis (|n·axis| > 0.99), a fixed direction perpendicular to the axis instead.
+/// What is projected is never shorter than 0.14, so no rounding turns the result.
+pub fn tangent_of(normal: DVec3, axis: DVec3) -> DVec3 {
+    let a = if normal.dot(axis).abs() > 0.99 {
+        crate::radiometry::earth::orthonormal_basis(axis).0
+    } else {
+        axis
+    };
+    (a - normal * normal.dot(a)).normalize()
 }

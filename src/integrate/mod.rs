@@ -14,7 +14,7 @@ pub mod visibility;
 
 use crate::geometry::{convex, Faces};
 use crate::radiometry::sun;
-use crate::scene::{EpochResult, Method, Response, Scene, Summary};
+use crate::scene::{EpochResult, MaterialAlbedo, Method, Response, Scene, Summary};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::time::Instant;
@@ -77,6 +77,7 @@ impl<'a> Prepared<'a> {
     pub fn new(scene: &'a Scene) -> Prepared<'a> {
         let per_triangle = scene.method == Method::Centroid;
         let mut faces = Faces::build(&scene.mesh, !per_triangle);
+        faces.set_tangents(|m| scene.materials[m as usize].tangent);
         faces.sort_spatially();
         let two_sided = faces
             .faces
@@ -225,6 +226,7 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
                 .ok_or(Cancelled)?,
         ),
     };
+    let (materials, warnings) = material_albedos(scene);
     Ok(Response {
         summary: Summary {
             epochs: epochs.len(),
@@ -234,8 +236,48 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
             elapsed_ms: start.elapsed().as_secs_f64() * 1e3,
             method: prepared.method.clone(),
             convex: prepared.convex,
+            materials,
         },
         epochs,
         thumbnails,
+        warnings,
     })
+}
+
+/// Each material's albedo, and a warning for each that reflects more than it receives.
+fn material_albedos(scene: &Scene) -> (Vec<MaterialAlbedo>, Vec<String>) {
+    let mut warnings = Vec::new();
+    let found: Vec<_> = scene
+        .materials
+        .par_iter()
+        .map(|m| crate::brdf::albedo::albedo(&m.brdf))
+        .collect();
+    let albedos = scene
+        .materials
+        .iter()
+        .zip(found)
+        .map(|(m, a)| {
+            if a.max > 1.0 {
+                let hint = match m.brdf {
+                    crate::brdf::Brdf::SeedMicrofacet(_) => {
+                        " (the paper's Eqs. 7-8 are not normalised: with \"normalised\": true, \
+                         km is the specular albedo)"
+                    }
+                    _ => "",
+                };
+                warnings.push(format!(
+                    "material `{}` reflects more light than it receives: its directional \
+                     albedo is {:.3} at normal incidence, up to {:.3} at {}° incidence{hint}",
+                    m.name, a.normal, a.max, a.max_at_deg
+                ));
+            }
+            MaterialAlbedo {
+                name: m.name.clone(),
+                albedo_normal: a.normal,
+                albedo_max: a.max,
+                albedo_max_incidence_deg: a.max_at_deg,
+            }
+        })
+        .collect();
+    (albedos, warnings)
 }

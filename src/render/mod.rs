@@ -97,7 +97,8 @@ pub struct Renderer<'a> {
 impl<'a> Renderer<'a> {
     /// Builds faces (as the light curve does for this scene's method) and the BVH.
     pub fn new(scene: &'a Scene) -> Renderer<'a> {
-        let faces = Faces::build(&scene.mesh, scene.method != Method::Centroid);
+        let mut faces = Faces::build(&scene.mesh, scene.method != Method::Centroid);
+        faces.set_tangents(|m| scene.materials[m as usize].tangent);
         Renderer::with_faces(scene, faces)
     }
 

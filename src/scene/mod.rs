@@ -7,7 +7,7 @@ pub mod response;
 pub mod validate;
 
 pub use request::Request;
-pub use response::{EpochResult, Response, Summary};
+pub use response::{EpochResult, MaterialAlbedo, Response, Summary};
 pub use validate::{Limits, ValidationError};
 
 use crate::brdf::Brdf;
@@ -21,6 +21,10 @@ pub struct Material {
     pub brdf: Brdf,
     /// Lit and seen from both sides (thin sheets).
     pub two_sided: bool,
+    /// Unit body-frame direction along which an anisotropic model's first exponent
+    /// (Ashikhmin–Shirley's n_u) runs: each face takes it projected onto its plane
+    /// ([`crate::geometry::faces::tangent_of`]). Default the body's x axis.
+    pub tangent: DVec3,
 }
 
 /// One epoch's geometry in the body frame.
@@ -65,7 +69,7 @@ impl Default for Illumination {
         Illumination {
             band_um: [0.4, 0.7],
             sun_temperature_k: 5900.0,
-            earthshine: EarthshineModel::Seed,
+            earthshine: EarthshineModel::Sphere,
             earth_albedo: 0.35,
         }
     }

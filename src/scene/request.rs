@@ -162,11 +162,12 @@ impl<'de> Deserialize<'de> for MaterialSpec {
 }
 
 /// A material with its model parameters. Which parameters are allowed depends on `model`:
-/// - `seed-microfacet`: `kd`, `km`, `slope_rms`, `n`, `k` (the paper's Eqs. 6–8)
+/// - `seed-microfacet`: `kd`, `km`, `slope_rms`, `n`, `k` (the paper's Eqs. 6–8), optional
+///   `normalised`
 /// - `lambert`: `albedo`
 /// - `rough-conductor`: `alpha`, `n`, `k`, optional `kd` and `shadowing` (Beckmann + Smith,
 ///   as Mitsuba 3's `roughconductor`; pbrt's Smith form with `shadowing: correlated`)
-/// - `ashikhmin-shirley`: `rd`, `rs`, `nu`, `nv`
+/// - `ashikhmin-shirley`: `rd`, `rs`, `nu`, `nv`, optional `tangent`
 #[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialObject {
@@ -187,6 +188,13 @@ pub struct MaterialObject {
     /// RMS microfacet slope δ (dimensionless, > 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub slope_rms: Option<f64>,
+    /// `seed-microfacet` only. `false` (default): k^M as the paper's Eq. 8 writes it, whose
+    /// lobe reflects ≈ 4π·k^M·F(0) of the light at normal incidence (a smooth lobe; more
+    /// than 1 for k^M above ~0.08). `true`: k^M (0..1) is the specular lobe's albedo at
+    /// normal incidence — Eq. 8's k^M is k^M / a(δ, n, k), a the lobe's albedo with
+    /// k^M = 1 — so kd + km ≤ 1 reflects no more than it receives there.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normalised: Option<bool>,
     /// Real part of the complex refractive index.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub n: Option<f64>,
@@ -212,12 +220,18 @@ pub struct MaterialObject {
     /// Ashikhmin–Shirley specular reflectance at normal incidence R_s (0..1).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rs: Option<f64>,
-    /// Ashikhmin–Shirley Phong exponent along the face tangent (> 0).
+    /// Ashikhmin–Shirley Phong exponent along the face tangent (> 0): see `tangent`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nu: Option<f64>,
     /// Ashikhmin–Shirley Phong exponent along the face bitangent (> 0).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nv: Option<f64>,
+    /// Ashikhmin–Shirley only: the body-frame direction [x, y, z] (any length) along which
+    /// `nu` runs, e.g. a brushed or grooved direction. Each face takes it projected onto
+    /// its plane; a face whose normal is within 8.1° of it takes instead a fixed direction
+    /// perpendicular to it. Default [1, 0, 0], the body's x axis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangent: Option<[f64; 3]>,
     /// Thin sheet lit and seen from both sides (solar panels). Default false.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub two_sided: Option<bool>,
@@ -299,7 +313,11 @@ pub struct IlluminationSpec {
     /// Sun blackbody temperature in K. Default 5900 (the paper's value).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sun_temperature_k: Option<f64>,
-    /// `off`, `seed` (the paper's Eq. 3, default) or `sphere` (sunlit Lambertian Earth).
+    /// `off`, `sphere` (the default: the sunlit Lambertian Earth over its visible cap, with
+    /// its distance and phase) or `seed` (the paper's Eq. 3: ρ·E_s as one parallel beam
+    /// from the Earth's direction at any distance and Earth phase — to reproduce the
+    /// paper; at GEO it is 59× the sphere at full Earth). Without `earth` in the epochs,
+    /// no earthshine.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub earthshine: Option<String>,
     /// Earth's Bond albedo ρ. Default 0.35.

@@ -11,6 +11,10 @@ pub struct Response {
     /// Rendered images, when the request asked for `thumbnails`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thumbnails: Option<Vec<Thumbnail>>,
+    /// What the caller should know about the result (a material that reflects more light
+    /// than it receives); absent when there is nothing to say.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// One rendered image of the object as the observer sees it.
@@ -78,4 +82,22 @@ pub struct Summary {
     pub method: String,
     /// Whether the mesh was detected as convex (no rays needed).
     pub convex: bool,
+    /// Per material, in the request's order: how much of the light it receives it
+    /// reflects.
+    #[serde(default)]
+    pub materials: Vec<MaterialAlbedo>,
+}
+
+/// A material's directional-hemispherical albedo ρ(θi) = ∫ f cosθr dω over the view
+/// hemisphere (dimensionless): above 1 it reflects more light than it receives, as the
+/// paper's Eqs. 7–8 do for its own fitted materials (docs/physics.md §6.5).
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema, PartialEq)]
+pub struct MaterialAlbedo {
+    pub name: String,
+    /// ρ for light at normal incidence.
+    pub albedo_normal: f64,
+    /// The largest ρ over incidences 0°, 30°, 50°, 65°, 75° and 85°.
+    pub albedo_max: f64,
+    /// The incidence of `albedo_max`, degrees.
+    pub albedo_max_incidence_deg: f64,
 }

@@ -582,6 +582,7 @@ fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationErro
             name: name.clone(),
             brdf: (preset(name, field)?.brdf)(),
             two_sided: false,
+            tangent: DVec3::X,
         }),
         MaterialSpec::Full(m) => {
             if m.name.is_empty() {
@@ -600,6 +601,7 @@ fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationErro
                         name: m.name.clone(),
                         brdf,
                         two_sided,
+                        tangent: DVec3::X,
                     })
                 }
                 (None, None) => err(format!("{field}.model"), "is required (or give `preset`)"),
@@ -607,6 +609,16 @@ fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationErro
                     name: m.name.clone(),
                     brdf: model_brdf(field, model, m)?,
                     two_sided,
+                    tangent: match m.tangent {
+                        None => DVec3::X,
+                        Some(t) => {
+                            let t = vector(&format!("{field}.tangent"), t)?;
+                            if t.length() == 0.0 {
+                                return err(format!("{field}.tangent"), "must not be zero");
+                            }
+                            t.normalize()
+                        }
+                    },
                 }),
             }
         }
@@ -619,6 +631,7 @@ fn only(field: &str, m: &MaterialObject, allowed: &[&str]) -> Result<(), Validat
         ("kd", m.kd.is_some()),
         ("km", m.km.is_some()),
         ("slope_rms", m.slope_rms.is_some()),
+        ("normalised", m.normalised.is_some()),
         ("n", m.n.is_some()),
         ("k", m.k.is_some()),
         ("albedo", m.albedo.is_some()),
@@ -628,6 +641,7 @@ fn only(field: &str, m: &MaterialObject, allowed: &[&str]) -> Result<(), Validat
         ("rs", m.rs.is_some()),
         ("nu", m.nu.is_some()),
         ("nv", m.nv.is_some()),
+        ("tangent", m.tangent.is_some()),
     ];
     for (name, present) in given {
         if present && !allowed.contains(&name) {
@@ -657,12 +671,35 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
             }))
         }
         "seed-microfacet" => {
-            only(field, m, &["kd", "km", "slope_rms", "n", "k"])?;
+            only(
+                field,
+                m,
+                &["kd", "km", "slope_rms", "n", "k", "normalised"],
+            )?;
+            let normalised = m.normalised.unwrap_or(false);
             let kd = in_range(&f("kd"), req("kd", m.kd)?, 0.0, 1.0)?;
-            let km = in_range(&f("km"), req("km", m.km)?, 0.0, 1e3)?;
+            let km_max = if normalised { 1.0 } else { 1e3 };
+            let km = in_range(&f("km"), req("km", m.km)?, 0.0, km_max)?;
             let d = in_range(&f("slope_rms"), req("slope_rms", m.slope_rms)?, 1e-6, 10.0)?;
             let n = positive(&f("n"), req("n", m.n)?)?;
             let k = in_range(&f("k"), m.k.unwrap_or(0.0), 0.0, 1e3)?;
+            let km = if normalised && km > 0.0 {
+                // the lobe's albedo at normal incidence with k^M = 1
+                let unit = Brdf::SeedMicrofacet(SeedMicrofacet::new(0.0, 1.0, d, n, k));
+                let a = crate::brdf::albedo::directional(&unit, 0.0, 0.0);
+                if a <= 1e-9 {
+                    return err(
+                        f("n"),
+                        format!(
+                            "with n = {n}, k = {k} the surface reflects (almost) nothing \
+                             (lobe albedo {a:.1e}): km cannot be scaled to an albedo"
+                        ),
+                    );
+                }
+                km / a
+            } else {
+                km
+            };
             Ok(Brdf::SeedMicrofacet(SeedMicrofacet::new(kd, km, d, n, k)))
         }
         "rough-conductor" => {
@@ -681,7 +718,7 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
             ))
         }
         "ashikhmin-shirley" => {
-            only(field, m, &["rd", "rs", "nu", "nv"])?;
+            only(field, m, &["rd", "rs", "nu", "nv", "tangent"])?;
             let rd = in_range(&f("rd"), req("rd", m.rd)?, 0.0, 1.0)?;
             let rs = in_range(&f("rs"), req("rs", m.rs)?, 0.0, 1.0)?;
             let nu = in_range(&f("nu"), req("nu", m.nu)?, 0.0, 1e7)?;

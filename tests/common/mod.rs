@@ -59,6 +59,7 @@ pub fn material(name: &str, brdf: Brdf, two_sided: bool) -> Material {
         name: name.to_string(),
         brdf,
         two_sided,
+        tangent: glam::DVec3::X,
     }
 }
 

@@ -215,6 +215,15 @@ fn obj_errors() {
         obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
         "object.mesh.obj",
     );
+    // tobj reads these as numbers; they once reached the BVH builder and panicked (500)
+    for bad in ["nan", "inf", "-inf", "NaN"] {
+        expect_field(
+            obj(&format!(
+                "v {bad} 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 2 3 4\nf 1 3 4\n"
+            )),
+            "object.mesh.obj",
+        );
+    }
     // a valid one for contrast: materials by `usemtl` name
     let mut v = base();
     obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl b\nf 1 2 3\nusemtl a\nf 1 2 4\n")(&mut v);

@@ -7,9 +7,23 @@ use glam::DVec3;
 /// `usemtl` name; faces before any `usemtl` take material 0. Polygons are
 /// fan-triangulated; normals and texture coordinates are ignored (winding gives the normal).
 pub fn parse(text: &str, material_names: &[&str]) -> Result<Mesh, String> {
-    for line in text.lines() {
+    for (number, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
-        if words.next() == Some("usemtl") {
+        let first = words.next();
+        // tobj reads `nan` and `inf` as numbers: a vertex must be a point
+        if first == Some("v") {
+            if let Some(w) = words
+                .clone()
+                .take(3)
+                .find(|w| w.parse::<f64>().is_ok_and(|x| !x.is_finite()))
+            {
+                return Err(format!(
+                    "line {}: vertex coordinate `{w}` is not a finite number",
+                    number + 1
+                ));
+            }
+        }
+        if first == Some("usemtl") {
             let name = words.next().unwrap_or("");
             if !material_names.contains(&name) {
                 return Err(format!(

@@ -885,11 +885,14 @@ fn mesh(spec: &MeshSpec, materials: &[Material], limits: &Limits) -> Result<Mesh
     if let Some(i) = mesh
         .vertices
         .iter()
-        .position(|v| v.abs().max_element() > MAX_COORDINATE_M)
+        .position(|v| !v.is_finite() || v.abs().max_element() > MAX_COORDINATE_M)
     {
         return err(
             format!("object.mesh.vertices[{i}]"),
-            format!("a coordinate beyond {MAX_COORDINATE_M:e} m: give the mesh in metres"),
+            format!(
+                "a coordinate that is not a finite number or lies beyond \
+                 {MAX_COORDINATE_M:e} m: give the mesh in metres"
+            ),
         );
     }
     // The same triangle twice (same corners, same winding) would count its light twice;

@@ -660,3 +660,15 @@ fn huge_coordinates_and_duplicated_triangles_are_named() {
     v["object"]["mesh"]["triangles"] = json!([[0, 1, 2], [0, 2, 1]]);
     check(&v).expect("two triangles back to back are a thin plate");
 }
+
+/// One request per body: data after it is refused (it was ignored), whitespace is not.
+#[test]
+fn data_after_the_request_is_refused() {
+    let text = base().to_string();
+    assert!(glint::scene::validate::parse_request(&format!("{text} \n\t")).is_ok());
+    for tail in ["{}", "x", "[1]", "0", "\"more\""] {
+        let e = glint::scene::validate::parse_request(&format!("{text}{tail}"))
+            .expect_err("trailing data refused");
+        assert!(e.message.contains("after the request"), "{tail}: {e}");
+    }
+}

@@ -71,7 +71,7 @@ impl Default for Limits {
 /// Parses request JSON, turning serde's errors into field-naming ones.
 pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
     let de = &mut serde_json::Deserializer::from_str(text);
-    serde_path_to_error::deserialize(de).map_err(|e| {
+    let request = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
         let mut field = e.path().to_string();
         if field == "." {
             field.clear();
@@ -102,7 +102,12 @@ pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
             }
         };
         ValidationError { field, message }
-    })
+    })?;
+    // one request per body: anything after it but whitespace is refused, not ignored
+    de.end().map_err(|e| {
+        ValidationError::new("", format!("invalid JSON: data after the request ({e})"))
+    })?;
+    Ok(request)
 }
 
 fn err<T>(field: impl Into<String>, message: impl Into<String>) -> Result<T, ValidationError> {

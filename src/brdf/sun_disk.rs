@@ -66,8 +66,9 @@ pub const PENUMBRA_RINGS: usize = 6;
 /// [`SunLight`]), so that the blob is round in the reflected direction at every phase.
 pub const BLOB: f64 = 0.18;
 /// Least cos(g/2) a blob's widening across the Sun–observer plane uses, in solar radii
-/// (phase within ~0.5° of 180°, where the glint lies at grazing and carries almost
-/// nothing): keeps the widening finite where the plane is undefined.
+/// (a disk direction within 0.02 ρ of the anti-observer direction): keeps the widening
+/// finite where the plane is undefined. At phase 180° the blobs of the inner ring then
+/// span about a radian along the terminator, as the disk's image there does.
 const LEAST_COS_HALF_PHASE: f64 = 0.01;
 /// The specular term is negligible (e^-36 of its peak) this many lobe slopes past the
 /// disk's edge, measured in the half vector (so twice that in the Sun's direction).

@@ -130,8 +130,9 @@ fn normal_incidence_is_finite() {
 /// Phase 0° and 180° exactly, on a sphere with every model: phase reported as exactly 0
 /// and 180; at 180° no face is both lit and seen by a point Sun, so E = 0 and the
 /// magnitude is null. The narrow-lobed presets average the specular term over the Sun's
-/// disk (0.27° radius), whose limb does light a sliver past the terminator: there E must
-/// be negligible (< 1e-4 of phase 0) and still finite. At 0° a Lambert sphere matches the
+/// disk (0.27° radius), which lights faces within ρ of the terminator at grazing: a
+/// mirror-like sphere reflects the Sun there about as brightly as at any phase (held to a
+/// brute-force truth in tests/glint_edges.rs), so E must be finite and below 5× phase 0. At 0° a Lambert sphere matches the
 /// phase law to its tessellation error (2e-3 at level 4, see tests/analytic.rs).
 #[test]
 fn phase_zero_and_180_exactly() {
@@ -158,8 +159,11 @@ fn phase_zero_and_180_exactly() {
             .lobe_slope()
             .is_some_and(|sl| sl <= glint::brdf::sun_disk::WIDE_LOBE * rho);
         if disk {
+            // the Sun reflected at grazing on the limb: as bright as the sphere at phase
+            // 0 or so, not negligible (tests/glint_edges.rs holds it to a brute-force
+            // truth); finite and of that order is what is asked here
             assert!(
-                opposite.irradiance_w_m2 < 1e-4 * zero.irradiance_w_m2,
+                opposite.irradiance_w_m2 < 5.0 * zero.irradiance_w_m2,
                 "{}: {opposite:?}",
                 m.name
             );

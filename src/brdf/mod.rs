@@ -269,6 +269,44 @@ impl Directions {
         self.model(brdf, frame, ci, cr)
     }
 
+    /// The model for light from `l` (unit, `ci` = n·l > 0 and `cr` > 0 given), whose half
+    /// vector with the view direction is `h`, keeping the Fresnel term of these
+    /// directions' own half vector (it varies slowly): how [`sun_disk`] moves one disk
+    /// direction's lobe across the Sun–observer plane, light and half vector together.
+    #[inline]
+    pub(crate) fn model_moved(
+        &self,
+        brdf: &Brdf,
+        frame: &Frame,
+        ci: f64,
+        cr: f64,
+        l: DVec3,
+        h: DVec3,
+    ) -> f64 {
+        let moved = |x: Half| Half {
+            h,
+            cos_b: l.dot(h).max(0.0),
+            ..x
+        };
+        let value = match brdf {
+            Brdf::Lambert(m) => m.projected(ci, cr),
+            Brdf::SeedMicrofacet(m) => m.projected_fixed(frame.n, &self.half.map(moved), ci, cr),
+            Brdf::RoughConductor(m) => m.projected_fixed(frame.n, &self.half.map(moved), ci, cr),
+            Brdf::AshikhminShirley(m) => m.projected(frame, l, self.v, ci, cr),
+        };
+        if value.is_finite() && value > 0.0 {
+            value
+        } else {
+            0.0
+        }
+    }
+
+    /// The view direction.
+    #[inline]
+    pub(crate) fn view(&self) -> DVec3 {
+        self.v
+    }
+
     /// The model itself, given both cosines (> 0).
     #[inline]
     fn model(&self, brdf: &Brdf, frame: &Frame, ci: f64, cr: f64) -> f64 {

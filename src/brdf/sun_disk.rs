@@ -17,7 +17,12 @@
 //!   directions spread evenly over the disk (a hexagonal pattern of equal weights),
 //!   each direction's lobe widened to [`BLOB`]·ρ when narrower, so the samples blend
 //!   into the disk's image instead of separate spikes; widening keeps each lobe's
-//!   normalisation, so the reflected energy is unchanged.
+//!   normalisation, so the reflected energy is unchanged. Across the plane of Sun and
+//!   observer the blob is widened further, by 1/cos(g/2) at phase g, so that it stays
+//!   round in the reflected direction (see [`SunLight`]).
+//! - While the Earth hides part of the disk (penumbra), a finer hexagonal pattern
+//!   ([`PENUMBRA_RINGS`]) with its hidden points dropped averages over the visible part
+//!   only ([`SunLight::eclipsed`]).
 
 use super::{Brdf, Directions, Fixed, Frame};
 use crate::radiometry::earth::orthonormal_basis;
@@ -48,11 +53,23 @@ pub const SMOOTH_RULES: [(f64, usize, usize); 4] =
 pub const RINGS: usize = 3;
 /// Directions of the hexagonal pattern: 1 + 3·RINGS·(RINGS + 1).
 pub const HEX_POINTS: usize = 1 + 3 * RINGS * (RINGS + 1);
+/// Rings of the finer hexagonal pattern used while the Earth hides part of the disk
+/// (127 directions, spacing 0.17 ρ): the points behind the Earth are dropped, so the
+/// pattern's spacing is how sharply the Earth's limb is drawn across the glint. Penumbra
+/// lasts a few epochs of an eclipse, so the cost does not count.
+pub const PENUMBRA_RINGS: usize = 6;
 /// Smallest lobe RMS slope used for one disk direction, in solar radii. The lobe's
 /// width in the observer's angle is √2 times its slope, 0.25 ρ, about 0.8 of the pattern's
 /// spacing (0.31 ρ): neighbours blend and the disk's image is flat to 1e-3 (tuned on a
-/// mirror's sweep; 0.12–0.21 all keep the energy within 1 %).
+/// mirror's sweep; 0.12–0.21 all keep the energy within 1 %). This is the width in the
+/// plane of Sun and observer; across it the blob is widened by 1/cos(g/2) (see
+/// [`SunLight`]), so that the blob is round in the reflected direction at every phase.
 pub const BLOB: f64 = 0.18;
+/// Least cos(g/2) a blob's widening across the Sun–observer plane uses, in solar radii
+/// (a disk direction within 0.02 ρ of the anti-observer direction): keeps the widening
+/// finite where the plane is undefined. At phase 180° the blobs of the inner ring then
+/// span about a radian along the terminator, as the disk's image there does.
+const LEAST_COS_HALF_PHASE: f64 = 0.01;
 /// The specular term is negligible (e^-36 of its peak) this many lobe slopes past the
 /// disk's edge, measured in the half vector (so twice that in the Sun's direction).
 const TAIL: f64 = 6.0;
@@ -61,29 +78,45 @@ const TAIL: f64 = 6.0;
 /// (a rule's weights sum to 1).
 type DiskPoint = (f64, f64, f64);
 
-/// Every point of a hexagonal lattice within [`RINGS`] rings of the centre, the spacing d
-/// chosen so that each point stands for an equal share of the disk's area
-/// (π = N·(√3/2)·d²).
-fn hex_points() -> &'static [DiskPoint] {
-    static POINTS: std::sync::OnceLock<Vec<DiskPoint>> = std::sync::OnceLock::new();
-    POINTS.get_or_init(|| {
-        let d = (2.0 * std::f64::consts::PI / (HEX_POINTS as f64 * 3f64.sqrt())).sqrt();
-        let k = RINGS as i32;
-        let w = 1.0 / HEX_POINTS as f64;
-        let mut p = Vec::with_capacity(HEX_POINTS);
-        for i in -k..=k {
-            for j in -k..=k {
-                // axial hex coordinates: inside ring k when the third coordinate is too
-                if (i + j).abs() <= k {
-                    let x = d * (i as f64 + 0.5 * j as f64);
-                    let y = d * (0.75f64.sqrt() * j as f64);
-                    p.push((x, y, w));
-                }
+/// The spacing of a hexagonal pattern of `rings` rings on the unit disk, chosen so that
+/// each point stands for an equal share of the disk's area (π = N·(√3/2)·d²).
+fn hex_spacing(rings: usize) -> f64 {
+    let n = 1 + 3 * rings * (rings + 1);
+    (2.0 * std::f64::consts::PI / (n as f64 * 3f64.sqrt())).sqrt()
+}
+
+/// Every point of a hexagonal lattice within `rings` rings of the centre, spaced by
+/// [`hex_spacing`], with equal weights.
+fn hex_pattern(rings: usize) -> Vec<DiskPoint> {
+    let d = hex_spacing(rings);
+    let k = rings as i32;
+    let n = 1 + 3 * rings * (rings + 1);
+    let w = 1.0 / n as f64;
+    let mut p = Vec::with_capacity(n);
+    for i in -k..=k {
+        for j in -k..=k {
+            // axial hex coordinates: inside ring k when the third coordinate is too
+            if (i + j).abs() <= k {
+                let x = d * (i as f64 + 0.5 * j as f64);
+                let y = d * (0.75f64.sqrt() * j as f64);
+                p.push((x, y, w));
             }
         }
-        debug_assert_eq!(p.len(), HEX_POINTS);
-        p
-    })
+    }
+    debug_assert_eq!(p.len(), n);
+    p
+}
+
+/// The hexagonal pattern of [`RINGS`] rings ([`HEX_POINTS`] points).
+fn hex_points() -> &'static [DiskPoint] {
+    static POINTS: std::sync::OnceLock<Vec<DiskPoint>> = std::sync::OnceLock::new();
+    POINTS.get_or_init(|| hex_pattern(RINGS))
+}
+
+/// The hexagonal pattern of [`PENUMBRA_RINGS`] rings.
+fn penumbra_points() -> &'static [DiskPoint] {
+    static POINTS: std::sync::OnceLock<Vec<DiskPoint>> = std::sync::OnceLock::new();
+    POINTS.get_or_init(|| hex_pattern(PENUMBRA_RINGS))
 }
 
 /// Radon's 7-point rule for the disk, exact for polynomials of degree 5 (Stroud's
@@ -151,13 +184,56 @@ fn smooth_rules() -> &'static [Vec<DiskPoint>] {
 /// for a point Sun (`sun_radius` = 0), for materials without a narrow lobe, and away
 /// from the glint.
 pub fn projected(brdf: &Brdf, frame: &Frame, l: DVec3, v: DVec3, sun_radius: f64) -> f64 {
-    projected_with(brdf, frame, l, v, sun_radius, BLOB)
+    projected_with(brdf, frame, l, v, sun_radius, None, BLOB)
+}
+
+/// [`projected`] with part of the disk hidden by the Earth: the average over the part
+/// of the disk `earth` leaves visible (the caller multiplies by the visible fraction's
+/// irradiance, E_s·(1 − hidden)). The diffuse part stays a point evaluation.
+pub fn projected_eclipsed(
+    brdf: &Brdf,
+    frame: &Frame,
+    l: DVec3,
+    v: DVec3,
+    sun_radius: f64,
+    earth: Option<EarthDisk>,
+) -> f64 {
+    projected_with(brdf, frame, l, v, sun_radius, earth, BLOB)
+}
+
+/// The Earth's disk on the object's sky: the unit direction of its centre and its
+/// angular radius (rad). What hides part of the Sun in penumbra (docs/physics.md §4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EarthDisk {
+    pub dir: DVec3,
+    pub radius: f64,
+}
+
+impl EarthDisk {
+    /// Whether the direction `d` (unit) lies behind the Earth.
+    #[inline]
+    fn hides(&self, d: DVec3) -> bool {
+        angle(d, self.dir) < self.radius
+    }
+}
+
+/// Angle between unit vectors, rad (atan2: accurate near 0 and π).
+fn angle(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b))
 }
 
 /// The Sun (a disk) and the observer fixed for one epoch and material: [`projected`]
 /// for many faces, with what does not depend on the face computed once (the Fresnel
 /// terms of the point Sun and of every disk direction). Faces away from the glint
 /// (almost all) cost one point-Sun evaluation.
+///
+/// For the hexagonal patterns each direction's lobe is widened to a blob. In the plane
+/// of the Sun and the observer the blob has slope δ_in = max(δ, BLOB·ρ) in the half
+/// vector; across that plane the half vector moves 1/cos(g/2) times as fast as in it
+/// (g the phase angle), so there the blob gets δ_out = max(δ, BLOB·ρ/cos(g/2)): round,
+/// of slope 2·BLOB·ρ, in the reflected direction, where the pattern's points are evenly
+/// spaced. The lobe is evaluated with its offset across the plane scaled by
+/// q = δ_in/δ_out and multiplied by q, which keeps its normalisation.
 #[derive(Debug, Clone)]
 pub struct SunLight<'a> {
     point: Fixed<'a>,
@@ -173,35 +249,115 @@ struct Disk {
     cos_reach: f64,
     diffuse: Brdf,
     diffuse_dirs: Directions,
-    /// The specular part, widened to the blob's slope where narrower.
+    /// The specular part, widened to the blob's slope in the Sun–observer plane where
+    /// narrower.
     spec: Brdf,
-    /// Each direction of the rule, with its weight.
-    spec_dirs: Vec<(f64, Directions)>,
+    /// Each direction of the rule, with its weight and stretch.
+    spec_dirs: Vec<Sample>,
+}
+
+/// One direction on the disk.
+#[derive(Debug, Clone)]
+struct Sample {
+    /// Weight (the weights of a rule sum to 1).
+    w: f64,
+    dirs: Directions,
+    /// Unit half vector of this direction and the observer.
+    h: DVec3,
+    /// Unit vector across the plane of this direction and the observer (l_k × v).
+    across: DVec3,
+    /// δ_in/δ_out (≤ 1): how much the lobe's offset across the plane is scaled; 1 leaves
+    /// the lobe as the (widened) model has it.
+    squeeze: f64,
+}
+
+impl Sample {
+    /// w·f·cosθi·cosθr of this direction on a face (`cr` = n·v).
+    #[inline]
+    fn projected_given(&self, spec: &Brdf, frame: &Frame, cr: f64) -> f64 {
+        if self.squeeze >= 1.0 {
+            return self.w * self.dirs.projected_given(spec, frame, cr);
+        }
+        if cr <= 0.0 {
+            return 0.0;
+        }
+        // the half vector turned towards n across the plane by (1 − q) of n's angle a
+        // from it that way, so the lobe sees that angle scaled by q (an angle, not a
+        // tangent offset: near phase 180° the blobs span radians along the terminator);
+        // and the light moved with it (the direction that h mirrors into v), so the blob
+        // is lit as from where it lies
+        let n = frame.n;
+        let a = n.dot(self.across).atan2(n.dot(self.h));
+        let (sa, ca) = ((1.0 - self.squeeze) * a).sin_cos();
+        let h = self.h * ca + self.across * sa;
+        let v = self.dirs.view();
+        let l = 2.0 * h.dot(v) * h - v;
+        let ci = n.dot(l);
+        if ci <= 0.0 {
+            return 0.0;
+        }
+        self.w * self.squeeze * self.dirs.model_moved(spec, frame, ci, cr, l, h)
+    }
+}
+
+/// The rule chosen for one epoch: its directions with weights (summing to 1 over the
+/// visible part of the disk), the slope its lobes get in the Sun–observer plane, and
+/// the blob's slope (rad, in the half vector) when it is a hexagonal pattern.
+struct Rule {
+    dirs: Vec<(f64, DVec3)>,
+    slope_in: f64,
+    blob: Option<f64>,
 }
 
 impl<'a> SunLight<'a> {
     pub fn new(brdf: &'a Brdf, l: DVec3, v: DVec3, sun_radius: f64) -> SunLight<'a> {
+        SunLight::build(brdf, l, v, sun_radius, None, BLOB)
+    }
+
+    /// [`SunLight::new`] with part of the disk perhaps hidden by the Earth: values are
+    /// averages over the visible part (see [`projected_eclipsed`]).
+    pub fn eclipsed(
+        brdf: &'a Brdf,
+        l: DVec3,
+        v: DVec3,
+        sun_radius: f64,
+        earth: Option<EarthDisk>,
+    ) -> SunLight<'a> {
+        SunLight::build(brdf, l, v, sun_radius, earth, BLOB)
+    }
+
+    fn build(
+        brdf: &'a Brdf,
+        l: DVec3,
+        v: DVec3,
+        sun_radius: f64,
+        earth: Option<EarthDisk>,
+        blob: f64,
+    ) -> SunLight<'a> {
         let disk = match brdf.lobe_slope() {
             Some(slope)
                 if !sun_radius.is_nan() && sun_radius > 0.0 && slope <= WIDE_LOBE * sun_radius =>
             {
-                let (rule, blob) = disk_rule(slope, l, v, sun_radius, BLOB);
-                let reach = sun_radius + 2.0 * TAIL * blob;
-                let diffuse = brdf.split(true);
-                let spec = widened(brdf.split(false), slope, blob);
-                let spec_dirs = disk_directions(rule, l, sun_radius)
-                    .map(|(w, d)| (w, Directions::new(&spec, d, v)))
-                    .collect();
-                Some(Disk {
-                    cos_reach: if reach >= std::f64::consts::PI {
-                        -1.0
-                    } else {
-                        reach.cos()
-                    },
-                    diffuse_dirs: Directions::new(&diffuse, l, v),
-                    diffuse,
-                    spec,
-                    spec_dirs,
+                disk_rule(slope, l, v, sun_radius, earth, blob).map(|rule| {
+                    let reach = sun_radius + 2.0 * TAIL * rule.slope_in;
+                    let diffuse = brdf.split(true);
+                    let spec = widened(brdf.split(false), slope, rule.slope_in);
+                    let spec_dirs = rule
+                        .dirs
+                        .iter()
+                        .map(|&(w, d)| sample(&spec, w, d, v, slope, rule.blob, sun_radius))
+                        .collect();
+                    Disk {
+                        cos_reach: if reach >= std::f64::consts::PI {
+                            -1.0
+                        } else {
+                            reach.cos()
+                        },
+                        diffuse_dirs: Directions::new(&diffuse, l, v),
+                        diffuse,
+                        spec,
+                        spec_dirs,
+                    }
                 })
             }
             _ => None,
@@ -225,12 +381,48 @@ impl<'a> SunLight<'a> {
     pub fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
         if let Some(disk) = &self.disk {
             let n = frame.n;
-            // near the glint: the test of `projected_with`, by cosines
+            // near the glint: the mirror direction within the disk's reach
             if cr > 0.0 && (2.0 * cr * n - self.v).dot(self.l) >= disk.cos_reach {
                 return disk.projected_given(frame, cr);
             }
         }
         self.point.projected_given(frame, cr)
+    }
+}
+
+/// One direction `d` of weight `w` for the specular part `spec` (widened to the blob in
+/// the Sun–observer plane), with its stretch across that plane for a hexagonal pattern
+/// of blob slope `blob` (rad).
+fn sample(
+    spec: &Brdf,
+    w: f64,
+    d: DVec3,
+    v: DVec3,
+    slope: f64,
+    blob: Option<f64>,
+    sun_radius: f64,
+) -> Sample {
+    let dirs = Directions::new(spec, d, v);
+    let plain = Sample {
+        w,
+        dirs,
+        h: DVec3::ZERO,
+        across: DVec3::ZERO,
+        squeeze: 1.0,
+    };
+    let Some(blob) = blob else {
+        return plain;
+    };
+    let (Some(h), Some(across)) = (super::half_vector(d, v), d.cross(v).try_normalize()) else {
+        return plain;
+    };
+    let cos_half = (0.5 * (d + v).length()).max(LEAST_COS_HALF_PHASE * sun_radius);
+    let squeeze = slope.max(blob) / slope.max(blob / cos_half);
+    Sample {
+        h,
+        across,
+        squeeze,
+        ..plain
     }
 }
 
@@ -241,39 +433,65 @@ impl Disk {
         let sum: f64 = self
             .spec_dirs
             .iter()
-            .map(|(w, d)| w * d.projected_given(&self.spec, frame, cr))
+            .map(|d| d.projected_given(&self.spec, frame, cr))
             .sum();
         self.diffuse_dirs.projected_given(&self.diffuse, frame, cr) + sum
     }
 }
 
 /// The rule for a lobe of RMS slope `slope` against a disk of angular radius
-/// `sun_radius` (rad) about `l`, seen from `v`, and the smallest slope its directions'
-/// lobes get (`blob` solar radii for the hexagonal pattern).
+/// `sun_radius` (rad) about `l`, seen from `v`, perhaps partly hidden by `earth`; `blob`
+/// is the hexagonal pattern's least slope in solar radii. `None` when the Earth hides
+/// every direction of the rule.
 ///
 /// Across the disk the lobe is narrower than its slope says when the phase angle g is
 /// large: moving the Sun by β in the plane of `l` and `v` turns the half vector by β/2,
 /// but out of that plane by β/(2·cos(g/2)). What the rule must resolve is the narrow
 /// width, slope·cos(g/2) (a quarter of the slope at g = 151°).
+///
+/// With part of the disk behind the Earth the finer hexagonal pattern of
+/// [`PENUMBRA_RINGS`] rings serves whatever the lobe, its hidden points dropped and the
+/// others' weights renormalised to 1.
 fn disk_rule(
     slope: f64,
     l: DVec3,
     v: DVec3,
     sun_radius: f64,
+    earth: Option<EarthDisk>,
     blob: f64,
-) -> (&'static [DiskPoint], f64) {
-    let width = slope * 0.5 * (l + v).length() / sun_radius;
-    match SMOOTH_RULES.iter().position(|r| width >= r.0) {
-        Some(k) => (&smooth_rules()[k], slope),
-        None => (hex_points(), slope.max(blob * sun_radius)),
+) -> Option<Rule> {
+    if let Some(earth) = earth.filter(|e| angle(l, e.dir) < sun_radius + e.radius) {
+        let blob = blob * sun_radius * hex_spacing(PENUMBRA_RINGS) / hex_spacing(RINGS);
+        let dirs: Vec<(f64, DVec3)> = disk_directions(penumbra_points(), l, sun_radius)
+            .filter(|&(_, d)| !earth.hides(d))
+            .collect();
+        let total: f64 = dirs.iter().map(|p| p.0).sum();
+        if dirs.is_empty() {
+            return None;
+        }
+        return Some(Rule {
+            dirs: dirs.into_iter().map(|(w, d)| (w / total, d)).collect(),
+            slope_in: slope.max(blob),
+            blob: Some(blob),
+        });
     }
+    let width = slope * 0.5 * (l + v).length() / sun_radius;
+    let (points, blob) = match SMOOTH_RULES.iter().position(|r| width >= r.0) {
+        Some(k) => (&smooth_rules()[k][..], None),
+        None => (hex_points(), Some(blob * sun_radius)),
+    };
+    Some(Rule {
+        dirs: disk_directions(points, l, sun_radius).collect(),
+        slope_in: blob.map_or(slope, |b| slope.max(b)),
+        blob,
+    })
 }
 
-/// The specular part `spec` (RMS slope `slope`) with its lobe widened to `blob` where
+/// The specular part `spec` (RMS slope `slope`) with its lobe widened to `to` where
 /// narrower.
-fn widened(spec: Brdf, slope: f64, blob: f64) -> Brdf {
-    if blob > slope {
-        spec.widened(blob)
+fn widened(spec: Brdf, slope: f64, to: f64) -> Brdf {
+    if to > slope {
+        spec.widened(to)
     } else {
         spec
     }
@@ -300,8 +518,8 @@ fn disk_directions(
     })
 }
 
-/// [`projected`] with the smallest lobe slope per direction of the hexagonal pattern
-/// given as `blob` solar radii (for tuning and tests).
+/// [`projected_eclipsed`] with the smallest lobe slope per direction of the hexagonal
+/// pattern given as `blob` solar radii (for tuning and tests).
 #[doc(hidden)]
 pub fn projected_with(
     brdf: &Brdf,
@@ -309,6 +527,7 @@ pub fn projected_with(
     l: DVec3,
     v: DVec3,
     sun_radius: f64,
+    earth: Option<EarthDisk>,
     blob: f64,
 ) -> f64 {
     let point = || brdf.projected(frame, l, v);
@@ -318,21 +537,15 @@ pub fn projected_with(
     if sun_radius.is_nan() || sun_radius <= 0.0 || slope > WIDE_LOBE * sun_radius {
         return point();
     }
-    let (rule, blob) = disk_rule(slope, l, v, sun_radius, blob);
     // The Sun direction that would mirror into `v`; the glint lives within the disk
-    // radius plus the lobe's reach of it.
+    // radius plus the lobe's reach of it (the widest blob's, for any rule).
     let n = frame.n;
     let mirror = 2.0 * n.dot(v) * n - v;
-    let off = mirror.cross(l).length().atan2(mirror.dot(l));
-    if n.dot(v) <= 0.0 || off > sun_radius + 2.0 * TAIL * blob {
+    if n.dot(v) <= 0.0 || angle(mirror, l) > sun_radius + 2.0 * TAIL * slope.max(blob * sun_radius)
+    {
         return point();
     }
-    let diffuse = brdf.split(true).projected(frame, l, v);
-    let spec = widened(brdf.split(false), slope, blob);
-    let sum: f64 = disk_directions(rule, l, sun_radius)
-        .map(|(w, dir)| w * spec.projected(frame, dir, v))
-        .sum();
-    diffuse + sum
+    SunLight::build(brdf, l, v, sun_radius, earth, blob).projected(frame)
 }
 
 #[cfg(test)]

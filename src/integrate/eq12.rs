@@ -7,7 +7,7 @@
 
 use super::visibility::Uncertain;
 use super::Prepared;
-use crate::brdf::sun_disk::SunLight;
+use crate::brdf::sun_disk::{EarthDisk, SunLight};
 use crate::brdf::{Fixed, Frame};
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
 use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination};
@@ -51,6 +51,9 @@ pub struct EpochLight {
     pub sun_w_m2: f64,
     /// Fraction of the solar disk hidden by the Earth (0..1).
     pub eclipse: f64,
+    /// The Earth's disk while it hides part of the Sun's (penumbra, 0 < `eclipse` < 1):
+    /// a glint then reflects only the visible part of the disk.
+    pub penumbra: Option<EarthDisk>,
     pub earthshine: earth::Earthshine,
 }
 
@@ -59,16 +62,21 @@ impl EpochLight {
         let l = epoch.sun;
         let es_full =
             sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
-        let (hidden, earthshine) = match epoch.earth {
-            None => (0.0, earth::Earthshine::default()),
+        let (hidden, penumbra, earthshine) = match epoch.earth {
+            None => (0.0, None, earth::Earthshine::default()),
             Some(e) => {
                 let d = e.length();
                 let e_dir = e / d;
+                let earth_radius = (EARTH_RADIUS_M / d).min(1.0).asin();
                 let hidden = eclipse::hidden_fraction(
                     sun::angular_radius(epoch.sun_distance_m),
-                    (EARTH_RADIUS_M / d).min(1.0).asin(),
+                    earth_radius,
                     angle_between(l, e_dir),
                 );
+                let penumbra = (hidden > 0.0 && hidden < 1.0).then_some(EarthDisk {
+                    dir: e_dir,
+                    radius: earth_radius,
+                });
                 // The Earth reflects the sunlight that reaches it, which no eclipse of the
                 // object changes.
                 let shine = match ill.earthshine {
@@ -76,12 +84,13 @@ impl EpochLight {
                     EarthshineModel::Seed => earth::seed(e_dir, ill.earth_albedo, es_full),
                     EarthshineModel::Sphere => earth::sphere(e, l, ill.earth_albedo, es_full),
                 };
-                (hidden, shine)
+                (hidden, penumbra, shine)
             }
         };
         EpochLight {
             sun_w_m2: es_full * (1.0 - hidden),
             eclipse: hidden,
+            penumbra,
             earthshine,
         }
     }
@@ -98,6 +107,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
     let EpochLight {
         sun_w_m2: es,
         eclipse: hidden,
+        penumbra,
         earthshine,
     } = EpochLight::at(ill, epoch);
     let sun_radius = sun::angular_radius(epoch.sun_distance_m);
@@ -110,7 +120,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         .iter()
         .map(|m| MaterialLight {
             two_sided: m.two_sided,
-            sun: SunLight::new(&m.brdf, l, v, sun_radius),
+            sun: SunLight::eclipsed(&m.brdf, l, v, sun_radius, penumbra),
             beams: earthshine
                 .beams
                 .iter()

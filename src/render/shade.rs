@@ -72,7 +72,15 @@ pub fn face_shades(
             let cr = cr.abs();
             // as the light curve's pass 1 (eq12.rs): the Sun as a disk, earthshine as beams
             let sun_l = if light.sun_w_m2 > 0.0 {
-                light.sun_w_m2 * sun_disk::projected(&material.brdf, &frame, sun, view, sun_radius)
+                light.sun_w_m2
+                    * sun_disk::projected_eclipsed(
+                        &material.brdf,
+                        &frame,
+                        sun,
+                        view,
+                        sun_radius,
+                        light.penumbra,
+                    )
                     / cr
             } else {
                 0.0

@@ -3,6 +3,7 @@
 //! every model finite at grazing angles (docs/physics.md §6) — no division by a cosine.
 
 pub mod ashikhmin_shirley;
+pub mod earth_light;
 pub mod fresnel;
 pub mod lambert;
 pub mod rough_conductor;

@@ -72,9 +72,11 @@ impl Case {
 
     /// What the code gives: Σ P·E over the earthshine, W/(m²·sr) per m² of face.
     fn code(&self, brdf: &Brdf) -> f64 {
-        let d = self.object.length();
-        let shine = earth::sphere(-self.object, self.sun, RHO, ES);
-        let _ = d;
+        self.code_with(brdf, earth::RINGS, earth::AZIMUTHS)
+    }
+
+    fn code_with(&self, brdf: &Brdf, rings: usize, azimuths: usize) -> f64 {
+        let shine = earth::sphere_with(-self.object, self.sun, RHO, ES, rings, azimuths);
         EarthLight::new(brdf, &shine, self.view).projected(&self.frame(), self.view)
     }
 
@@ -297,5 +299,44 @@ fn table() {
             }
             eprintln!("{line}");
         }
+    }
+}
+
+/// Error against beam count, for docs/tradeoff-box-wing.md
+/// (`cargo test --release --test earthshine beam_count -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn beam_count() {
+    let obs: Vec<f64> = (-4..=4).map(|k| 10.0 * k as f64).collect();
+    let psis: Vec<f64> = (0..=17).map(|k| 10.0 * k as f64).chain([175.0]).collect();
+    let ds = [LEO, MEO, GEO, 49.99 * R, 64.0 * R];
+    let mut cases = Vec::new();
+    for (name, brdf, obs) in [
+        ("lambert", lambert(), &[0.0, 30.0][..]),
+        ("body-wrap", body_wrap(), &obs[..]),
+    ] {
+        for &d in &ds {
+            let scale = full(d);
+            for &psi in &psis {
+                for &o in obs {
+                    let c = Case::new(d, psi, o);
+                    let truth = c.truth(&brdf, 100);
+                    cases.push((name, brdf.clone(), c, truth.max(1e-3 * scale), truth));
+                }
+            }
+        }
+    }
+    for (rings, az) in [(2, 4), (3, 6), (4, 8), (6, 8), (8, 12), (12, 16)] {
+        let mut line = format!("rings {rings} azimuths {az}:");
+        for name in ["lambert", "body-wrap"] {
+            let (mut worst, mut beams) = (0.0f64, 0usize);
+            for (_, brdf, c, floor, truth) in cases.iter().filter(|x| x.0 == name) {
+                let n = earth::sphere_with(-c.object, c.sun, RHO, ES, rings, az).beams.len();
+                beams = beams.max(n);
+                worst = worst.max((c.code_with(brdf, rings, az) - truth).abs() / floor);
+            }
+            line += &format!(" {name} worst {worst:.1e} (beams <= {beams});");
+        }
+        eprintln!("{line}");
     }
 }

@@ -3,9 +3,10 @@
 //! - `Seed` (the paper's Eq. 3): a parallel beam of irradiance ρE_s from the Earth's
 //!   direction, whatever the distance and Earth phase.
 //! - `Sphere`: the Earth as a Lambertian sphere of radius R_E, each point of its visible
-//!   disk radiating ρE_s·max(0, cos z)/π (z: solar zenith angle there). The visible cap is
-//!   integrated as an extended source by a quadrature uniform in solid angle, so it is
-//!   right in LEO where the Earth fills much of the sky (docs/physics.md §5).
+//!   disk radiating ρE_s·max(0, cos z)/π (z: solar zenith angle there). The sunlit part
+//!   of the visible cap (a crescent, or the whole cap) is integrated as an extended source
+//!   by beams placed on it, the same rule from LEO to any distance (docs/physics.md §5);
+//!   narrow specular lobes take a glint rule per face (`brdf/earth_light.rs`).
 
 use super::EARTH_RADIUS_M;
 use glam::DVec3;
@@ -48,9 +49,9 @@ pub fn seed(earth_dir: DVec3, albedo: f64, sun_irradiance: f64) -> Earthshine {
 }
 
 /// Rings (in the emission angle) of the crescent rule, per segment of the lit cap.
-pub const RINGS: usize = 8;
+pub const RINGS: usize = 6;
 /// Directions (in azimuth about the sub-object point) per ring.
-pub const AZIMUTHS: usize = 12;
+pub const AZIMUTHS: usize = 8;
 /// A crescent's arcs take up to this many times [`AZIMUTHS`] when thin.
 pub const ARC_AZIMUTHS_MAX: usize = 4;
 

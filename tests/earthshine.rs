@@ -107,7 +107,10 @@ impl Case {
         // the cap on the Earth's surface: θ from the sub-object point, dΩ = cos ε dA / r²
         // (smooth up to the limb, where the emission angle ε reaches 90°)
         let up = -e;
-        let (a, b) = (up.any_orthonormal_vector(), up.cross(up.any_orthonormal_vector()));
+        let (a, b) = (
+            up.any_orthonormal_vector(),
+            up.cross(up.any_orthonormal_vector()),
+        );
         let theta_v = (R / d).acos();
         let (nt, np) = (2 * n, 4 * n);
         let (dt, dp) = (theta_v / nt as f64, 2.0 * PI / np as f64);
@@ -176,7 +179,8 @@ impl Case {
                             let dir = mirror * cr + u * sr;
                             let l = self.radiance(dir);
                             if l > 0.0 {
-                                sum += l * brdf.projected(&frame, dir, self.view)
+                                sum += l
+                                    * brdf.projected(&frame, dir, self.view)
                                     * bump(dir)
                                     * sr
                                     * dr;
@@ -212,7 +216,10 @@ fn the_truth_converges() {
     ] {
         let c = Case::new(d, psi, obs);
         let (a, b) = (c.truth(&brdf, 100), c.truth(&brdf, 200));
-        eprintln!("truth d {d:.4e} ψ {psi} obs {obs}: n 100 → 200 changes it by {:.1e}", (a - b) / b);
+        eprintln!(
+            "truth d {d:.4e} ψ {psi} obs {obs}: n 100 → 200 changes it by {:.1e}",
+            (a - b) / b
+        );
         assert!(
             ((a - b) / b).abs() < 2e-4,
             "d {d} ψ {psi} obs {obs}: {a:e} vs {b:e}"
@@ -268,20 +275,15 @@ fn crescents_on_a_lambert_face() {
 fn glossy_face_observer_sweep() {
     let obs: Vec<f64> = (-8..=8).map(|k| 5.0 * k as f64).collect();
     let ds = [LEO, MEO, GEO, 49.99 * R, 50.01 * R, 64.0 * R];
-    let (err, at) = worst(&body_wrap(), &ds, &[0.0, 60.0, 90.0, 120.0, 150.0], &obs, 100);
+    let (err, at) = worst(
+        &body_wrap(),
+        &ds,
+        &[0.0, 60.0, 90.0, 120.0, 150.0],
+        &obs,
+        100,
+    );
     eprintln!("glossy sweep: worst {err:.2e} at {at}");
     assert!(err < 1e-2, "{err:.3e} at {at}");
-}
-
-#[test]
-#[ignore]
-fn debug_cases() {
-    let obs: Vec<f64> = (-8..=8).map(|k| 5.0 * k as f64).collect();
-    for (d, psi) in [(GEO, 170.0), (GEO, 90.0), (49.99 * R, 0.0), (MEO, 90.0)] {
-        let (err, at) = worst(&body_wrap(), &[d], &[psi], &obs, 100);
-        let shine = earth::sphere(DVec3::new(0.0, 0.0, -d), DVec3::X, RHO, ES);
-        eprintln!("{err:.2e} {at} patch {}", shine.patch);
-    }
 }
 
 /// The table behind docs/physics.md §5: worst error over the observer sweep per distance
@@ -331,7 +333,9 @@ fn beam_count() {
         for name in ["lambert", "body-wrap"] {
             let (mut worst, mut beams) = (0.0f64, 0usize);
             for (_, brdf, c, floor, truth) in cases.iter().filter(|x| x.0 == name) {
-                let n = earth::sphere_with(-c.object, c.sun, RHO, ES, rings, az).beams.len();
+                let n = earth::sphere_with(-c.object, c.sun, RHO, ES, rings, az)
+                    .beams
+                    .len();
                 beams = beams.max(n);
                 worst = worst.max((c.code_with(brdf, rings, az) - truth).abs() / floor);
             }

@@ -178,12 +178,10 @@ impl Glint {
             }
             // integrate the lit pieces on their own
             let mut now = first;
-            for c in 0..ncut {
-                let ua = cuts[c];
+            for (c, &ua) in cuts[..ncut].iter().enumerate() {
                 if now {
-                    if c + 1 < ncut {
+                    if let Some(&ub) = cuts[..ncut].get(c + 1) {
                         // a lit piece [ua, ub] in u: Gauss–Legendre on ∫ f(u²) 2u du
-                        let ub = cuts[c + 1];
                         sum += legendre()
                             .iter()
                             .map(|&(x, w)| {
@@ -267,7 +265,8 @@ fn laguerre() -> &'static [(f64, f64)] {
                 for j in 0..n {
                     let p3 = p2;
                     p2 = p1;
-                    p1 = ((2 * j + 1) as f64 - z) * p2 / (j + 1) as f64 - j as f64 * p3 / (j + 1) as f64;
+                    p1 = ((2 * j + 1) as f64 - z) * p2 / (j + 1) as f64
+                        - j as f64 * p3 / (j + 1) as f64;
                 }
                 pp = n as f64 * (p1 - p2) / z;
                 let z1 = z;

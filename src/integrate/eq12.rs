@@ -7,8 +7,8 @@
 
 use super::visibility::Uncertain;
 use super::Prepared;
-use crate::brdf::sun_disk::SunLight;
 use crate::brdf::earth_light::EarthLight;
+use crate::brdf::sun_disk::SunLight;
 use crate::brdf::Frame;
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
 use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination};

@@ -156,9 +156,11 @@ fn light_model_note(scene: &Scene) -> String {
     let earthshine = match scene.illumination.earthshine {
         EarthshineModel::Off => "earthshine off".to_string(),
         EarthshineModel::Seed => "earthshine: the paper's parallel beam from the Earth".to_string(),
-        EarthshineModel::Sphere => "earthshine: the Earth's sunlit crescent integrated as an extended \
+        EarthshineModel::Sphere => {
+            "earthshine: the Earth's sunlit crescent integrated as an extended \
                                      source (crescent beams; narrow lobes by a glint rule per face)"
-            .to_string(),
+                .to_string()
+        }
     };
     // Every material model has wavelength-independent parameters, so the band integral
     // factors out of the face sum (eq12's module doc).

@@ -147,7 +147,7 @@ pub fn sphere_with(
     };
     let b = o.cross(a);
     let theta_v = k.acos(); // the limb, on the Earth
-    // θ ↔ e on the Earth: e = θ + γ, tan γ = R sin θ / (d − R cos θ)
+                            // θ ↔ e on the Earth: e = θ + γ, tan γ = R sin θ / (d − R cos θ)
     let e_of_theta = |t: f64| t + (EARTH_RADIUS_M * t.sin()).atan2(d - EARTH_RADIUS_M * t.cos());
     let half_pi = 0.5 * PI;
     let mut beams = Vec::with_capacity(2 * rings * azimuths);
@@ -176,7 +176,11 @@ pub fn sphere_with(
     // whole rings out to θ_f (clipped at the limb)
     let theta_f = (half_pi - psi).min(theta_v);
     if theta_f > 0.0 {
-        let e_f = if theta_f >= theta_v { half_pi } else { e_of_theta(theta_f) };
+        let e_f = if theta_f >= theta_v {
+            half_pi
+        } else {
+            e_of_theta(theta_f)
+        };
         let gamma_f = (k * e_f.sin()).asin();
         patch = patch.max(gamma_f / rings as f64);
         for (i, &(x, wx)) in gauss.iter().enumerate() {

@@ -435,9 +435,9 @@ fn sphere_earthshine(d: f64, psi: f64, rho: f64, es: f64) -> f64 {
 /// The "sphere" earthshine against the exact view-factor integral over the Earth's sunlit
 /// visible cap (a 400×400 surface quadrature here, itself checked to give π L (R_E/d)²
 /// for uniform radiance L to 5e-5). From LEO to GEO, at Earth phases where the lit part
-/// is more than a thin crescent. Tolerance 2% (measured ≤ 0.9% since 932073e; 1.9% before):
-/// the model integrates the cap on a grid of directions, and the radiance has a
-/// square-root edge at the limb.
+/// is more than a thin crescent. Tolerance 2% (measured ≤ 0.9% after 932073e, 1.9% before;
+/// since the crescent rule the model is within 5e-4 of a finer truth, tests/earthshine.rs,
+/// and what is left here is mostly this grid's own error).
 #[test]
 fn sphere_earthshine_view_factor() {
     let (rho, es) = (0.35, 1361.0);
@@ -496,7 +496,8 @@ fn sphere_earthshine_crescents() {
 /// coefficient of 0.7 at ψ = 0 up to ~20 at ψ = 170°).
 #[test]
 fn sphere_earthshine_far_field_limit() {
-    // (fixed in 932073e: the closed form is used beyond 50 R_E)
+    // (the crescent rule integrates the cap at every distance; this checks it tends to
+    // the closed form)
     let (rho, es) = (0.35, 1361.0);
     let mut bad = Vec::new();
     for psi_deg in [0.0f64, 60.0, 90.0, 120.0, 150.0, 170.0] {

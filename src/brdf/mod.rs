@@ -4,6 +4,7 @@
 
 pub mod albedo;
 pub mod ashikhmin_shirley;
+pub mod earth_light;
 pub mod fresnel;
 pub mod lambert;
 pub mod rough_conductor;

@@ -7,8 +7,9 @@
 
 use super::visibility::Uncertain;
 use super::Prepared;
+use crate::brdf::earth_light::EarthLight;
 use crate::brdf::sun_disk::{EarthDisk, SunLight};
-use crate::brdf::{Fixed, Frame};
+use crate::brdf::Frame;
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
 use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination};
 use glam::DVec3;
@@ -22,12 +23,12 @@ pub struct Scratch {
     silhouettes: super::silhouettes::Scratch,
 }
 
-/// What lights faces of one material at this epoch, from the Sun and each earthshine
-/// beam (irradiance W/m² and the BRDF's per-epoch part).
+/// What lights faces of one material at this epoch: the Sun and the earthshine, each
+/// with the BRDF's per-epoch part.
 struct MaterialLight<'a> {
     two_sided: bool,
     sun: SunLight<'a>,
-    beams: Vec<(f64, Fixed<'a>)>,
+    earth: EarthLight<'a>,
 }
 
 /// A face that reflects light towards the observer at this epoch.
@@ -121,11 +122,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         .map(|m| MaterialLight {
             two_sided: m.two_sided,
             sun: SunLight::eclipsed(&m.brdf, l, v, sun_radius, penumbra),
-            beams: earthshine
-                .beams
-                .iter()
-                .map(|b| (b.irradiance, Fixed::new(&m.brdf, b.dir, v)))
-                .collect(),
+            earth: EarthLight::new(&m.brdf, &earthshine, v),
         })
         .collect();
     scratch.lit.clear();
@@ -168,11 +165,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
         } else {
             0.0
         };
-        let earth_term: f64 = light
-            .beams
-            .iter()
-            .map(|(irradiance, fixed)| irradiance * fixed.projected_given(&frame, cr))
-            .sum();
+        let earth_term = light.earth.projected_given(&frame, cr);
         if sun_term > 0.0 || earth_term > 0.0 {
             unshadowed += (sun_term + earth_term) * face.area;
             if whole {

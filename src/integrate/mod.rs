@@ -151,31 +151,16 @@ impl<'a> Prepared<'a> {
 }
 
 /// What the illumination was modelled with, for `summary.method`: the earthshine model
-/// (for `sphere`, at how many epochs the Earth's cap was integrated as an extended source
-/// and at how many it was a point source, by distance) and the band integral.
+/// and the band integral.
 fn light_model_note(scene: &Scene) -> String {
-    use crate::radiometry::{earth::FAR_FIELD_RADII, EARTH_RADIUS_M};
     use crate::scene::EarthshineModel;
     let earthshine = match scene.illumination.earthshine {
         EarthshineModel::Off => "earthshine off".to_string(),
         EarthshineModel::Seed => "earthshine: the paper's parallel beam from the Earth".to_string(),
         EarthshineModel::Sphere => {
-            let (near, far) =
-                scene
-                    .epochs
-                    .iter()
-                    .filter_map(|e| e.earth)
-                    .fold((0, 0), |(near, far), e| {
-                        if e.length() <= FAR_FIELD_RADII * EARTH_RADIUS_M {
-                            (near + 1, far)
-                        } else {
-                            (near, far + 1)
-                        }
-                    });
-            format!(
-                "earthshine: the Earth's sunlit cap integrated as an extended source at {near} epochs \
-                 (within {FAR_FIELD_RADII} Earth radii), a point source with the Lambert phase law at {far}"
-            )
+            "earthshine: the Earth's sunlit crescent integrated as an extended \
+                                     source (crescent beams; narrow lobes by a glint rule per face)"
+                .to_string()
         }
     };
     // Every material model has wavelength-independent parameters, so the band integral

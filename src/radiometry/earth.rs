@@ -3,9 +3,10 @@
 //! - `Seed` (the paper's Eq. 3): a parallel beam of irradiance ρE_s from the Earth's
 //!   direction, whatever the distance and Earth phase.
 //! - `Sphere`: the Earth as a Lambertian sphere of radius R_E, each point of its visible
-//!   disk radiating ρE_s·max(0, cos z)/π (z: solar zenith angle there). The visible cap is
-//!   integrated as an extended source by a quadrature uniform in solid angle, so it is
-//!   right in LEO where the Earth fills much of the sky (docs/physics.md §5).
+//!   disk radiating ρE_s·max(0, cos z)/π (z: solar zenith angle there). The sunlit part
+//!   of the visible cap (a crescent, or the whole cap) is integrated as an extended source
+//!   by beams placed on it, the same rule from LEO to any distance (docs/physics.md §5);
+//!   narrow specular lobes take a glint rule per face (`brdf/earth_light.rs`).
 
 use super::EARTH_RADIUS_M;
 use glam::DVec3;
@@ -25,6 +26,13 @@ pub struct Beam {
 pub struct Earthshine {
     pub beams: Vec<Beam>,
     pub shadow_dir: Option<DVec3>,
+    /// The sunlit Earth the beams sample (the `sphere` model), for rules that look up its
+    /// radiance along other directions; `None` for the paper's single beam.
+    pub sunlit: Option<SunlitEarth>,
+    /// The largest extent of the sky a beam stands for, rad: the spacing of neighbouring
+    /// beams along a ring or across rings, whichever is larger (0 for the paper's single
+    /// beam).
+    pub patch: f64,
 }
 
 /// The paper's Eq. 3: E_e = ρ E_s arriving from the Earth's centre direction.
@@ -35,70 +43,228 @@ pub fn seed(earth_dir: DVec3, albedo: f64, sun_irradiance: f64) -> Earthshine {
             irradiance: albedo * sun_irradiance,
         }],
         shadow_dir: Some(earth_dir),
+        sunlit: None,
+        patch: 0.0,
     }
 }
 
-/// Beyond this many Earth radii the sphere model uses its far-field closed form.
-pub const FAR_FIELD_RADII: f64 = 50.0;
+/// Rings (in the emission angle) of the crescent rule, per segment of the lit cap.
+pub const RINGS: usize = 6;
+/// Directions (in azimuth about the sub-object point) per ring.
+pub const AZIMUTHS: usize = 8;
+/// A crescent's arcs take up to this many times [`AZIMUTHS`] when thin.
+pub const ARC_AZIMUTHS_MAX: usize = 4;
 
-/// The Earth as a sunlit Lambertian sphere, integrated over its visible cap.
-/// `earth` is the vector object → Earth centre (m), `sun_dir` the unit vector towards
-/// the Sun, `sun_irradiance` the band irradiance at the Earth (W/m²).
+/// The sunlit Earth as seen from the object: what a face needs to look up the Earth's
+/// radiance along any direction (the glint rule of `brdf/earth_light.rs`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SunlitEarth {
+    /// The object's position relative to the Earth's centre, m.
+    pub object: DVec3,
+    /// Unit vector towards the Sun.
+    pub sun_dir: DVec3,
+    /// ρE_s/π: the radiance of a point with the Sun overhead, W/(m²·sr).
+    pub radiance_scale: f64,
+    /// cos of the visible cap's angular radius seen from the object.
+    pub cos_cap: f64,
+    /// Unit vector object → Earth's centre.
+    pub centre_dir: DVec3,
+}
+
+impl SunlitEarth {
+    /// Radiance arriving along the unit direction `dir` (0 off the Earth or from its
+    /// night side), W/(m²·sr).
+    #[inline]
+    pub fn radiance(&self, dir: DVec3) -> f64 {
+        let b = self.object.dot(dir);
+        let c = self.object.length_squared() - EARTH_RADIUS_M * EARTH_RADIUS_M;
+        let disc = b * b - c;
+        if b >= 0.0 || disc < 0.0 {
+            return 0.0;
+        }
+        let t = -b - disc.sqrt();
+        let normal = (self.object + dir * t) / EARTH_RADIUS_M;
+        let cos_z = normal.dot(self.sun_dir);
+        if cos_z > 0.0 {
+            self.radiance_scale * cos_z
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The Earth as a sunlit Lambertian sphere, integrated over the part of its visible cap
+/// that is sunlit (docs/physics.md §5). `earth` is the vector object → Earth centre (m),
+/// `sun_dir` the unit vector towards the Sun, `sun_irradiance` the band irradiance at the
+/// Earth (W/m²).
+///
+/// The lit part of the visible cap, on the Earth's surface, is the set of points at an
+/// angle θ ≤ θ_v = acos(R_E/d) from the sub-object point that are on the day side:
+/// whole rings about the sub-object point out to θ_f = 90° − ψ (ψ the Earth phase), and
+/// beyond it (or from θ_min = ψ − 90° when ψ > 90°) arcs |φ| ≤ φ_max(θ) about the Sun's
+/// azimuth, cos φ_max = −cot θ cot ψ. Rings are placed in the emission angle e (the angle
+/// at the Earth's surface between its normal and the object), in which the solid angle
+/// seen from the object is analytic up to the limb: γ = asin((R_E/d) sin e), θ = e − γ,
+/// dΩ = sin γ (R_E/d) cos e / cos γ de dφ. Whole rings: Gauss–Legendre in e on [0, e_f],
+/// even azimuths; arcs: Gauss–Legendre in t, e = e_a + (90° − e_a) t² (which takes up the
+/// square-root start of a crescent), and Gauss–Legendre in φ on the arc. The same rule
+/// at every distance, so a thin crescent converges as a fat one and nothing switches.
 pub fn sphere(earth: DVec3, sun_dir: DVec3, albedo: f64, sun_irradiance: f64) -> Earthshine {
+    sphere_with(earth, sun_dir, albedo, sun_irradiance, RINGS, AZIMUTHS)
+}
+
+/// [`sphere`] with `rings` rings per segment and `azimuths` directions per ring (for
+/// the error-against-beam-count measurements).
+pub fn sphere_with(
+    earth: DVec3,
+    sun_dir: DVec3,
+    albedo: f64,
+    sun_irradiance: f64,
+    rings: usize,
+    azimuths: usize,
+) -> Earthshine {
     let d = earth.length();
     let e = earth / d;
-    if d > FAR_FIELD_RADII * EARTH_RADIUS_M {
-        // A small disk: its lit crescent would need a very fine grid, while the closed
-        // form — the Lambert-sphere phase law, from the Earth's centre — is within
-        // O(R_E/d) < 2 % of the exact integral (less than the grid's own error there).
-        let psi = (-e).dot(sun_dir).clamp(-1.0, 1.0).acos(); // Earth→object vs Earth→Sun
-        let law = 2.0 / (3.0 * PI) * ((PI - psi) * psi.cos() + psi.sin());
-        let irradiance = albedo * sun_irradiance * (EARTH_RADIUS_M / d).powi(2) * law.max(0.0);
-        return Earthshine {
-            beams: vec![Beam { dir: e, irradiance }],
-            shadow_dir: Some(e),
-        };
-    }
-    let sin_a = (EARTH_RADIUS_M / d).min(1.0);
-    let cos_a = (1.0 - sin_a * sin_a).max(0.0).sqrt();
-    // Rings uniform in cosγ (equal solid angle) and sectors in azimuth; more of both
-    // when the Earth looks large. The midpoint rule in cosγ integrates the cosine-
-    // weighted cap exactly for uniform radiance (the view-factor check in docs/physics.md §5).
-    let angular_radius = sin_a.asin();
-    let rings = ((angular_radius / 0.05).ceil() as usize).clamp(4, 16);
-    let sectors = (rings * 4).max(16);
-    let (t1, t2) = orthonormal_basis(e);
-    let p_obj = -earth; // object position relative to the Earth's centre
+    let object = -earth;
+    let o = -e; // Earth's centre → object
+    let k = (EARTH_RADIUS_M / d).min(1.0);
     let radiance_scale = albedo * sun_irradiance / PI;
-    let d_omega = TAU * (1.0 - cos_a) / (rings * sectors) as f64;
-    let mut beams = Vec::with_capacity(rings * sectors);
+    let lit = SunlitEarth {
+        object,
+        sun_dir,
+        radiance_scale,
+        cos_cap: (1.0 - k * k).max(0.0).sqrt(),
+        centre_dir: e,
+    };
+    let cos_psi = o.dot(sun_dir).clamp(-1.0, 1.0);
+    let psi = cos_psi.acos();
+    // azimuths about the sub-object point, from the Sun's side
+    let across = sun_dir - o * cos_psi;
+    let a = if across.length_squared() > 1e-24 {
+        across.normalize()
+    } else {
+        orthonormal_basis(o).0
+    };
+    let b = o.cross(a);
+    let theta_v = k.acos(); // the limb, on the Earth
+                            // θ ↔ e on the Earth: e = θ + γ, tan γ = R sin θ / (d − R cos θ)
+    let e_of_theta = |t: f64| t + (EARTH_RADIUS_M * t.sin()).atan2(d - EARTH_RADIUS_M * t.cos());
+    let half_pi = 0.5 * PI;
+    let mut beams = Vec::with_capacity(2 * rings * azimuths);
     let mut mean = DVec3::ZERO;
-    for i in 0..rings {
-        let u = cos_a + (1.0 - cos_a) * (i as f64 + 0.5) / rings as f64;
-        let s = (1.0 - u * u).max(0.0).sqrt();
-        for j in 0..sectors {
-            let phi = TAU * (j as f64 + 0.5 + 0.5 * (i % 2) as f64) / sectors as f64;
-            let dir = e * u + (t1 * phi.cos() + t2 * phi.sin()) * s;
-            // nearest intersection of the ray p_obj + t·dir with the Earth sphere
-            let b = p_obj.dot(dir);
-            let c = p_obj.length_squared() - EARTH_RADIUS_M * EARTH_RADIUS_M;
-            let disc = b * b - c;
-            if disc < 0.0 {
-                continue;
-            }
-            let t = -b - disc.sqrt();
-            let normal = (p_obj + dir * t) / EARTH_RADIUS_M;
-            let cos_z = normal.dot(sun_dir);
-            if cos_z <= 0.0 {
-                continue; // night side
-            }
-            let irradiance = radiance_scale * cos_z * d_omega;
+    let mut patch = 0.0f64;
+    let mut push = |e_ang: f64, phi: f64, w: f64, beams: &mut Vec<Beam>| {
+        let sin_g = k * e_ang.sin();
+        let cos_g = (1.0 - sin_g * sin_g).max(0.0).sqrt();
+        let theta = e_ang - sin_g.asin();
+        let (sp, cp) = phi.sin_cos();
+        let across = a * cp + b * sp;
+        let n = o * theta.cos() + across * theta.sin();
+        let cos_z = n.dot(sun_dir);
+        if cos_z <= 0.0 || cos_g <= 0.0 {
+            return;
+        }
+        let dir = e * cos_g + across * sin_g;
+        let d_omega = w * sin_g * k * e_ang.cos() / cos_g;
+        let irradiance = radiance_scale * cos_z * d_omega;
+        if irradiance > 0.0 {
             mean += dir * irradiance;
             beams.push(Beam { dir, irradiance });
         }
+    };
+    let gauss = gauss_legendre(rings);
+    // whole rings out to θ_f (clipped at the limb)
+    let theta_f = (half_pi - psi).min(theta_v);
+    if theta_f > 0.0 {
+        let e_f = if theta_f >= theta_v {
+            half_pi
+        } else {
+            e_of_theta(theta_f)
+        };
+        let gamma_f = (k * e_f.sin()).asin();
+        patch = patch.max(gamma_f / rings as f64);
+        for (i, &(x, wx)) in gauss.iter().enumerate() {
+            let e_ang = e_f * x;
+            patch = patch.max((k * e_ang.sin()) * TAU / azimuths as f64);
+            for j in 0..azimuths {
+                let phi = TAU * (j as f64 + 0.5 * (i % 2) as f64) / azimuths as f64;
+                push(e_ang, phi, e_f * wx * TAU / azimuths as f64, &mut beams);
+            }
+        }
+    }
+    // arcs from θ_a = max(θ_f, θ_min) to the limb
+    let theta_a = (psi - half_pi).abs();
+    if theta_a < theta_v && psi.sin() > 0.0 {
+        let e_a = e_of_theta(theta_a);
+        let span = half_pi - e_a;
+        let depth = k.asin() - (k * e_a.sin()).asin();
+        let cot_psi = cos_psi / psi.sin();
+        let arcs: Vec<(f64, f64, f64)> = gauss
+            .iter()
+            .map(|&(t, wt)| {
+                let e_ang = e_a + span * t * t;
+                let theta = e_ang - (k * e_ang.sin()).asin();
+                let phi_max = (-cot_psi / theta.tan()).clamp(-1.0, 1.0).acos();
+                (e_ang, 2.0 * span * t * wt, phi_max)
+            })
+            .collect();
+        // a thin crescent's arcs are long next to their depth: more azimuths (up to
+        // ARC_AZIMUTHS_MAX times), so the beams are spaced alike along and across it
+        let length = arcs
+            .iter()
+            .map(|&(e_ang, _, phi_max)| 2.0 * phi_max * k * e_ang.sin())
+            .fold(0.0, f64::max);
+        let per_arc = ((rings as f64 * length / depth.max(1e-300)).ceil() as usize)
+            .clamp(azimuths, ARC_AZIMUTHS_MAX * azimuths);
+        let gauss_phi = gauss_legendre(per_arc);
+        patch = patch.max(depth / rings as f64);
+        for &(e_ang, de, phi_max) in &arcs {
+            patch = patch.max(k * e_ang.sin() * 2.0 * phi_max / per_arc as f64);
+            for &(x, wx) in gauss_phi.iter() {
+                let phi = phi_max * (2.0 * x - 1.0);
+                push(e_ang, phi, de * 2.0 * phi_max * wx, &mut beams);
+            }
+        }
+    }
+    if beams.is_empty() {
+        patch = 0.0;
     }
     let shadow_dir = (mean.length_squared() > 0.0).then(|| mean.normalize());
-    Earthshine { beams, shadow_dir }
+    Earthshine {
+        beams,
+        shadow_dir,
+        sunlit: Some(lit),
+        patch,
+    }
+}
+
+/// Gauss–Legendre nodes and weights on [0, 1] (weights summing to 1), by Newton's
+/// method on the Legendre polynomial.
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut dp = 1.0;
+        for _ in 0..100 {
+            let (mut p0, mut p1) = (1.0, x);
+            for k in 2..=n {
+                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                p0 = p1;
+                p1 = p2;
+            }
+            let p = if n == 0 { 1.0 } else { p1 };
+            dp = n as f64 * (x * p - p0) / (x * x - 1.0);
+            let dx = p / dp;
+            x -= dx;
+            if dx.abs() < 1e-15 {
+                break;
+            }
+        }
+        let w = 2.0 / ((1.0 - x * x) * dp * dp);
+        out.push((0.5 * (1.0 - x), 0.5 * w));
+    }
+    out.reverse();
+    out
 }
 
 /// Two unit vectors completing `n` to a right-handed orthonormal basis.

@@ -13,6 +13,7 @@
 //! a face at one epoch: it is computed once per face, and each pixel sample only finds
 //! its face (closest hit) and casts the shadow rays.
 
+use crate::brdf::earth_light::EarthLight;
 use crate::brdf::{sun_disk, Frame};
 use crate::geometry::bvh::Occluder;
 use crate::geometry::Faces;
@@ -51,6 +52,11 @@ pub fn face_shades(
     sun_radius: f64,
     view: DVec3,
 ) -> Vec<FaceShade> {
+    // as the light curve's pass 1: the earthshine's per-material part once
+    let earth: Vec<EarthLight> = materials
+        .iter()
+        .map(|m| EarthLight::new(&m.brdf, &light.earthshine, view))
+        .collect();
     faces
         .faces
         .iter()
@@ -71,6 +77,7 @@ pub fn face_shades(
             };
             let cr = cr.abs();
             // as the light curve's pass 1 (eq12.rs): the Sun as a disk, earthshine as beams
+            // (and the glint rule)
             let sun_l = if light.sun_w_m2 > 0.0 {
                 light.sun_w_m2
                     * sun_disk::projected_eclipsed(
@@ -85,13 +92,7 @@ pub fn face_shades(
             } else {
                 0.0
             };
-            let earth_l: f64 = light
-                .earthshine
-                .beams
-                .iter()
-                .map(|b| b.irradiance * material.brdf.projected(&frame, b.dir, view))
-                .sum::<f64>()
-                / cr;
+            let earth_l = earth[face.material as usize].projected_given(&frame, cr) / cr;
             let earth_ray = earth_l > 0.0
                 && light
                     .earthshine

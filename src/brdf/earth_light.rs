@@ -1,0 +1,305 @@
+//! Earthshine on a face: the `sphere` model's beams, and a glint rule for narrow lobes
+//! (docs/physics.md §5).
+//!
+//! Each beam of [`Earthshine`] stands for a patch of the lit Earth about
+//! [`Earthshine::patch`] across. A specular lobe narrower than that, evaluated at the
+//! beams' directions alone, turns the Earth into a lattice of bright points: its glint
+//! spikes where the face's mirror direction meets a beam and vanishes between them. So
+//! for a material whose lobe slope is below [`GLINT_BELOW`] patches, the beams carry the
+//! diffuse part only and the specular part is integrated per face over the lobe itself:
+//! nodes in the half vector h about the face's normal, Gauss–Laguerre in s = tan²α/δ²
+//! (the Beckmann lobe is e^−s in it) and even azimuths, each looking up the Earth's
+//! radiance along its light direction l = 2(v·h)h − v. With
+//! dΩ_l = 4(v·h) dΩ_h and dΩ_h = δ² cos³α / 2 ds dφ,
+//!
+//! ```text
+//! ∫ P_spec(l) L(l) dΩ_l ≈ Σ_ij W_i e^(s_i) · (2π/M) · 2 (v·h) δ² cos³α · P_spec(l_ij) L(l_ij)
+//! ```
+//!
+//! exact for the lobe's own shape, so the glint follows the Earth's radiance (its
+//! terminator and limb) at the lobe's resolution. Faces whose mirror direction is beyond
+//! the lobe's reach of the Earth's disk skip it (its nodes would all see space). A lobe
+//! as wide as the patches or wider is evaluated at the beams like the rest.
+
+use super::{Brdf, Directions, Frame};
+use crate::radiometry::earth::{gauss_legendre, orthonormal_basis, Earthshine, SunlitEarth};
+use glam::DVec3;
+use std::f64::consts::TAU;
+
+/// A material whose lobe RMS slope is below this many beam patches takes the glint rule.
+pub const GLINT_BELOW: f64 = 1.0;
+/// Gauss–Laguerre nodes of the glint rule in s = tan²α/δ².
+pub const LAGUERRE: usize = 6;
+/// Azimuths of the glint rule about the face's normal.
+pub const GLINT_AZIMUTHS: usize = 32;
+/// Gauss–Legendre points on a lit piece of an azimuth that an edge of the lit Earth cuts.
+pub const PIECE_POINTS: usize = 6;
+/// Spacing in u = tanα/δ of the probes that look for an edge of the lit Earth along an
+/// azimuth of the glint rule: a crescent narrower than this (in the lobe's units) can
+/// slip between them.
+pub const PROBE_STEP: f64 = 0.1;
+/// Most edge crossings kept along one azimuth.
+const MAX_CUTS: usize = 16;
+
+/// Earthshine on the faces of one material at one epoch.
+#[derive(Debug, Clone)]
+pub struct EarthLight<'a> {
+    brdf: &'a Brdf,
+    /// What the beams evaluate when not the whole BRDF (its diffuse part).
+    beam_brdf: Option<Brdf>,
+    beams: Vec<(f64, Directions)>,
+    glint: Option<Glint>,
+}
+
+#[derive(Debug, Clone)]
+struct Glint {
+    spec: Brdf,
+    slope: f64,
+    earth: SunlitEarth,
+    v: DVec3,
+    /// cos of the largest angle between the face's mirror direction and the Earth's
+    /// centre at which a node can still see the Earth.
+    cos_reach: f64,
+}
+
+impl<'a> EarthLight<'a> {
+    /// The beams of `shine` on `brdf`, seen from `v`.
+    pub fn new(brdf: &'a Brdf, shine: &Earthshine, v: DVec3) -> EarthLight<'a> {
+        let glint = match (brdf.lobe_slope(), &shine.sunlit) {
+            (Some(slope), Some(earth))
+                if slope > 0.0 && slope < GLINT_BELOW * shine.patch && !shine.beams.is_empty() =>
+            {
+                let tan_max = slope * laguerre().last().map_or(0.0, |n| n.0).sqrt();
+                let reach = earth.cos_cap.clamp(-1.0, 1.0).acos() + 2.0 * tan_max.atan();
+                Some(Glint {
+                    spec: brdf.split(false),
+                    slope,
+                    earth: *earth,
+                    v,
+                    cos_reach: if reach >= std::f64::consts::PI {
+                        -1.0
+                    } else {
+                        reach.cos()
+                    },
+                })
+            }
+            _ => None,
+        };
+        let beam_brdf = glint.as_ref().map(|_| brdf.split(true));
+        let beams = shine
+            .beams
+            .iter()
+            .map(|b| {
+                (
+                    b.irradiance,
+                    Directions::new(beam_brdf.as_ref().unwrap_or(brdf), b.dir, v),
+                )
+            })
+            .collect();
+        EarthLight {
+            brdf,
+            beam_brdf,
+            beams,
+            glint,
+        }
+    }
+
+    /// Σ f·cosθi·cosθr·E over the earthshine, W/(m²·sr) per m² of face, given `cr` = n·v.
+    #[inline]
+    pub fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
+        let brdf = self.beam_brdf.as_ref().unwrap_or(self.brdf);
+        let beams: f64 = self
+            .beams
+            .iter()
+            .map(|(irradiance, d)| irradiance * d.projected_given(brdf, frame, cr))
+            .sum();
+        match &self.glint {
+            Some(g) if cr > 0.0 => beams + g.projected_given(frame, cr),
+            _ => beams,
+        }
+    }
+
+    /// [`EarthLight::projected_given`] computing n·v.
+    pub fn projected(&self, frame: &Frame, v: DVec3) -> f64 {
+        self.projected_given(frame, frame.n.dot(v))
+    }
+}
+
+impl Glint {
+    fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
+        let n = frame.n;
+        let mirror = 2.0 * cr * n - self.v;
+        if mirror.dot(self.earth.centre_dir) < self.cos_reach {
+            return 0.0;
+        }
+        let (t1, t2) = orthonormal_basis(n);
+        let step = TAU / GLINT_AZIMUTHS as f64;
+        let nodes = laguerre();
+        let probes = ((2.0 * nodes[LAGUERRE - 1].0).sqrt() / PROBE_STEP).ceil() as usize;
+        let mut sum = 0.0;
+        for j in 0..GLINT_AZIMUTHS {
+            let (sp, cp) = (step * (j as f64 + 0.5)).sin_cos();
+            let across = t1 * cp + t2 * sp;
+            let at = |s: f64| self.density(frame, n, across, s);
+            let lit_at = |u: f64| self.lit(n, across, u * u);
+            // is the Earth lit along this azimuth, probed every PROBE_STEP in u = √s
+            // out to the last node's reach: if so throughout, the plain rule
+            let mut cuts = [0.0f64; MAX_CUTS];
+            let mut ncut = 1;
+            let first = lit_at(0.0);
+            let mut prev = first;
+            for k in 1..=probes {
+                let u = k as f64 * PROBE_STEP;
+                let now = lit_at(u);
+                if now != prev && ncut < MAX_CUTS {
+                    // an edge (limb or terminator): find it in u
+                    let (mut lo, mut hi) = (u - PROBE_STEP, u);
+                    for _ in 0..40 {
+                        let mid = 0.5 * (lo + hi);
+                        if lit_at(mid) == prev {
+                            lo = mid;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    cuts[ncut] = 0.5 * (lo + hi);
+                    ncut += 1;
+                }
+                prev = now;
+            }
+            if ncut == 1 {
+                if first {
+                    sum += nodes
+                        .iter()
+                        .map(|&(s, w)| w * at(s).unwrap_or(0.0))
+                        .sum::<f64>();
+                }
+                continue;
+            }
+            // integrate the lit pieces on their own
+            let mut now = first;
+            for (c, &ua) in cuts[..ncut].iter().enumerate() {
+                if now {
+                    if let Some(&ub) = cuts[..ncut].get(c + 1) {
+                        // a lit piece [ua, ub] in u: Gauss–Legendre on ∫ f(u²) 2u du
+                        sum += legendre()
+                            .iter()
+                            .map(|&(x, w)| {
+                                let u = ua + (ub - ua) * x;
+                                w * (ub - ua) * 2.0 * u * at(u * u).unwrap_or(0.0)
+                            })
+                            .sum::<f64>();
+                    } else {
+                        // lit from ua on: Gauss–Laguerre shifted to s = ua² + s'
+                        sum += nodes
+                            .iter()
+                            .map(|&(s, w)| w * at(ua * ua + s).unwrap_or(0.0))
+                            .sum::<f64>();
+                    }
+                }
+                now = !now;
+            }
+        }
+        sum * step
+    }
+
+    /// Is the Earth lit along the light direction of the node at s on this azimuth?
+    #[inline]
+    fn lit(&self, n: DVec3, across: DVec3, s: f64) -> bool {
+        let t = self.slope * s.sqrt();
+        let h = (n + across * t).normalize();
+        let vh = self.v.dot(h);
+        vh > 0.0 && self.earth.radiance(2.0 * vh * h - self.v) > 0.0
+    }
+
+    /// The integrand in s = tan²α/δ² along the azimuth `across` (a unit vector ⟂ n):
+    /// 2(v·h)δ²cos³α · P_spec(l) · L(l); `None` where the Earth is dark or absent there.
+    #[inline]
+    fn density(&self, frame: &Frame, n: DVec3, across: DVec3, s: f64) -> Option<f64> {
+        let t = self.slope * s.sqrt();
+        let cos_a = 1.0 / (1.0 + t * t).sqrt();
+        let h = (n + across * t) * cos_a;
+        let vh = self.v.dot(h);
+        if vh <= 0.0 {
+            return None;
+        }
+        let l = 2.0 * vh * h - self.v;
+        let radiance = self.earth.radiance(l);
+        if radiance <= 0.0 {
+            return None;
+        }
+        let d2 = self.slope * self.slope;
+        Some(2.0 * vh * d2 * cos_a.powi(3) * radiance * self.spec.projected(frame, l, self.v))
+    }
+}
+
+/// Gauss–Legendre nodes on [0, 1] for the lit pieces of an azimuth.
+fn legendre() -> &'static [(f64, f64)] {
+    static NODES: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
+    NODES.get_or_init(|| gauss_legendre(PIECE_POINTS))
+}
+
+/// Gauss–Laguerre nodes s_i and weights W_i·e^(s_i) for ∫₀^∞ e^−s g(s) ds
+/// ([`LAGUERRE`] of them), by Newton's method on the Laguerre polynomial (Numerical
+/// Recipes' `gaulag`, α = 0).
+fn laguerre() -> &'static [(f64, f64)] {
+    static NODES: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
+    NODES.get_or_init(|| {
+        let n = LAGUERRE;
+        let mut out: Vec<(f64, f64)> = Vec::with_capacity(n);
+        let mut z = 0.0f64;
+        for i in 0..n {
+            z = match i {
+                0 => 3.0 / (1.0 + 2.4 * n as f64),
+                1 => z + 15.0 / (1.0 + 2.5 * n as f64),
+                _ => {
+                    let ai = (i - 1) as f64;
+                    z + (1.0 + 2.55 * ai) / (1.9 * ai) * (z - out[i - 2].0)
+                }
+            };
+            let mut pp = 1.0;
+            let mut p2 = 0.0;
+            for _ in 0..100 {
+                let mut p1 = 1.0;
+                p2 = 0.0;
+                for j in 0..n {
+                    let p3 = p2;
+                    p2 = p1;
+                    p1 = ((2 * j + 1) as f64 - z) * p2 / (j + 1) as f64
+                        - j as f64 * p3 / (j + 1) as f64;
+                }
+                pp = n as f64 * (p1 - p2) / z;
+                let z1 = z;
+                z = z1 - p1 / pp;
+                if (z - z1).abs() <= 1e-15 * z.abs() {
+                    break;
+                }
+            }
+            // W_i = −1/(pp · n · L_{n−1}); times e^{s_i}
+            let w = -1.0 / (pp * n as f64 * p2);
+            out.push((z, w * z.exp()));
+        }
+        out
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn laguerre_rule_integrates_polynomials_against_e_minus_s() {
+        // ∫₀^∞ e^−s s^k ds = k!, exact up to degree 2n − 1
+        let mut fact = 1.0;
+        for k in 0..(2 * LAGUERRE) {
+            if k > 0 {
+                fact *= k as f64;
+            }
+            let sum: f64 = laguerre()
+                .iter()
+                .map(|&(s, w)| w * (-s).exp() * s.powi(k as i32))
+                .sum();
+            assert!((sum / fact - 1.0).abs() < 1e-10, "k {k}: {sum} vs {fact}");
+        }
+    }
+}

@@ -13,6 +13,7 @@
 //! is divided by: f·cosθr is the projected value over cosθi, and θi stays below 90°.
 
 use super::{Brdf, Frame};
+use crate::radiometry::earth::gauss_legendre;
 use glam::DVec3;
 
 /// Nodes of the polar-angle rules (Gauss–Legendre).
@@ -72,7 +73,8 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
     };
     let ci = theta_i.cos();
     let l = DVec3::new(theta_i.sin() * phi_i.cos(), theta_i.sin() * phi_i.sin(), ci);
-    let (x, w) = gauss_legendre(polar);
+    // (node, weight) on [0, 1]
+    let nodes = gauss_legendre(polar);
     let d_phi = std::f64::consts::TAU / azimuths as f64;
     // the half vector's azimuth from the plane of incidence: the lobe is mirror-symmetric
     // about that plane for an isotropic model, and for an anisotropic one lit along an
@@ -94,18 +96,17 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
     // model's diffuse term depends on cosθi and cosθr only, so one azimuth stands for 2π
     let diffuse = brdf.split(true);
     let mut sum = 0.0;
-    for (xi, wi) in x.iter().zip(&w) {
-        let mu = 0.5 * (xi + 1.0);
+    for &(mu, wi) in &nodes {
         let v = DVec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
-        sum += 0.5 * wi * std::f64::consts::TAU * f_cos(&diffuse, v);
+        sum += wi * std::f64::consts::TAU * f_cos(&diffuse, v);
     }
 
     // specular part over the half vector's polar angle α ∈ (0, α_max)
     let specular = brdf.split(false);
     if let Some(slope) = widest_slope(brdf) {
         let a_max = (8.0 * slope).atan().min(std::f64::consts::FRAC_PI_2);
-        for (xi, wi) in x.iter().zip(&w) {
-            let a = 0.5 * a_max * (xi + 1.0);
+        for &(t, wi) in &nodes {
+            let a = a_max * t;
             let (sa, ca) = a.sin_cos();
             for k in 0..turns {
                 let p = azimuth(k);
@@ -119,7 +120,7 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
                     continue;
                 }
                 // dω_v = 4 (v·h) dω_h, dω_h = sinα dα dφ; v·h = l·h
-                sum += twice * 0.5 * a_max * wi * d_phi * sa * 4.0 * lh * f_cos(&specular, v);
+                sum += twice * a_max * wi * d_phi * sa * 4.0 * lh * f_cos(&specular, v);
             }
         }
     }
@@ -139,46 +140,10 @@ fn widest_slope(brdf: &Brdf) -> Option<f64> {
     }
 }
 
-/// Gauss–Legendre nodes and weights on [−1, 1] (Newton on P_n from Chebyshev guesses).
-fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let (mut x, mut w) = (vec![0.0; n], vec![0.0; n]);
-    for i in 0..n {
-        let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-        let mut dp = 1.0;
-        for _ in 0..100 {
-            // P_n(z) and its derivative by the three-term recurrence
-            let (mut p0, mut p1) = (1.0, z);
-            for k in 2..=n {
-                let p2 = ((2 * k - 1) as f64 * z * p1 - (k - 1) as f64 * p0) / k as f64;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n as f64 * (z * p1 - p0) / (z * z - 1.0);
-            let dz = p1 / dp;
-            z -= dz;
-            if dz.abs() < 1e-15 {
-                break;
-            }
-        }
-        x[i] = z;
-        w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
-    }
-    (x, w)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::brdf::{AshikhminShirley, Lambert, RoughConductor, SeedMicrofacet};
-
-    #[test]
-    fn gauss_legendre_integrates_polynomials_exactly() {
-        // 32 nodes are exact to degree 63: ∫ x^62 = 2/63
-        let (x, w) = gauss_legendre(32);
-        let s: f64 = x.iter().zip(&w).map(|(x, w)| w * x.powi(62)).sum();
-        assert!((s - 2.0 / 63.0).abs() < 1e-13, "{s}");
-        assert!((w.iter().sum::<f64>() - 2.0).abs() < 1e-13);
-    }
 
     #[test]
     fn lambert_reflects_its_albedo_at_every_incidence() {

@@ -103,7 +103,7 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
 
     // specular part over the half vector's polar angle α ∈ (0, α_max)
     let specular = brdf.split(false);
-    if let Some(slope) = widest_slope(brdf) {
+    if let Some((_, slope)) = brdf.lobe_slopes() {
         let a_max = (8.0 * slope).atan().min(std::f64::consts::FRAC_PI_2);
         for &(t, wi) in &nodes {
             let a = a_max * t;
@@ -125,19 +125,6 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
         }
     }
     sum
-}
-
-/// RMS slope of the widest direction of the specular lobe (`None` without one).
-fn widest_slope(brdf: &Brdf) -> Option<f64> {
-    match brdf {
-        Brdf::Lambert(_) => None,
-        Brdf::SeedMicrofacet(m) => (m.km > 0.0).then_some(m.slope_rms),
-        Brdf::RoughConductor(m) => (m.ks > 0.0).then_some(m.alpha),
-        // cosⁿ ≈ exp(−nα²/2): slope √(2/n), of the smaller exponent
-        Brdf::AshikhminShirley(m) => {
-            (m.specular && m.rs > 0.0).then(|| (2.0 / m.nu.min(m.nv).max(1e-300)).sqrt())
-        }
-    }
 }
 
 #[cfg(test)]

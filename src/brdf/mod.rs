@@ -92,13 +92,20 @@ impl Brdf {
     /// exp(−tan²α/δ²) of the half vector (dimensionless); `None` without a specular lobe.
     /// Ashikhmin–Shirley's cosⁿ ≈ exp(−nα²/2) gives δ = √(2/n).
     pub fn lobe_slope(&self) -> Option<f64> {
+        self.lobe_slopes().map(|(narrowest, _)| narrowest)
+    }
+
+    /// RMS slopes of the specular lobe's narrowest and widest directions (equal for an
+    /// isotropic lobe), as [`Brdf::lobe_slope`]; `None` without a specular lobe.
+    pub fn lobe_slopes(&self) -> Option<(f64, f64)> {
         match self {
             Brdf::Lambert(_) => None,
-            Brdf::SeedMicrofacet(m) => (m.km > 0.0).then_some(m.slope_rms),
-            Brdf::RoughConductor(m) => (m.ks > 0.0).then_some(m.alpha),
-            Brdf::AshikhminShirley(m) => {
-                (m.specular && m.rs > 0.0).then(|| (2.0 / m.nu.max(m.nv).max(1e-300)).sqrt())
-            }
+            Brdf::SeedMicrofacet(m) => (m.km > 0.0).then_some((m.slope_rms, m.slope_rms)),
+            Brdf::RoughConductor(m) => (m.ks > 0.0).then_some((m.alpha, m.alpha)),
+            Brdf::AshikhminShirley(m) => (m.specular && m.rs > 0.0).then(|| {
+                let slope = |n: f64| (2.0 / n.max(1e-300)).sqrt();
+                (slope(m.nu.max(m.nv)), slope(m.nu.min(m.nv)))
+            }),
         }
     }
 

@@ -589,3 +589,134 @@ fn finished_jobs_expire_after_the_time_to_live() {
     );
     assert_eq!(get(server.addr, "/v1/jobs").json(), serde_json::json!([]));
 }
+
+/// An engine that fails the way a bug would: a panic inside the engine's thread pool,
+/// with a message that must never reach a client.
+fn panicking_engine(
+    _: &glint::Scene,
+    _: &glint::Progress,
+) -> Result<glint::Response, glint::Cancelled> {
+    use rayon::prelude::*;
+    (0..8).into_par_iter().for_each(|i| {
+        if i == 5 {
+            panic!("secret detail of the fault");
+        }
+    });
+    unreachable!("the panic above always happens")
+}
+
+#[test]
+fn a_panic_in_a_computation_is_a_500_with_the_request_id_and_frees_the_slot() {
+    // One slot and no waiting room: a slot the panic kept would turn the next request
+    // into a 503.
+    let server = Server::start("panic", |c| {
+        c.engine = panicking_engine;
+        c.limits.max_concurrent = 1;
+        c.limits.max_queued = 0;
+    });
+    let req = scene_request("plate", 2);
+    for i in 0..3 {
+        let id = format!("client-id-{i}");
+        let r = http(
+            server.addr,
+            "POST",
+            "/v1/lightcurves",
+            &[JSON, ("X-Request-Id", &id)],
+            req.as_bytes(),
+        );
+        assert_error(&r, 500, None);
+        assert!(!r.text().contains("secret"), "{}", r.text());
+        assert_eq!(r.header("x-request-id"), Some(id.as_str()));
+        assert_eq!(r.json()["request_id"], id.as_str(), "{}", r.text());
+        assert!(r.json()["error"].as_str().unwrap().contains(&id));
+    }
+    // Without the client's id the service makes one and answers it the same way.
+    let r = post_json(server.addr, "/v1/lightcurves", &req);
+    assert_error(&r, 500, None);
+    let id = r.header("x-request-id").expect("an id").to_string();
+    assert_eq!(r.json()["request_id"], id.as_str());
+    // Every answer carries an id, not only faults.
+    assert!(get(server.addr, "/healthz")
+        .header("x-request-id")
+        .is_some());
+
+    // A job's computation fails the same way: `failed`, no panic text, and the slot
+    // comes back for the next request.
+    let job = post_json(server.addr, "/v1/jobs", &req).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    let s = wait_final(server.addr, &job, &[], Duration::from_secs(30));
+    assert_eq!(s["state"], "failed", "{s}");
+    let msg = s["error"].as_str().unwrap();
+    assert!(!msg.contains("secret") && msg.contains(&job), "{s}");
+    assert_error(&post_json(server.addr, "/v1/lightcurves", &req), 500, None);
+}
+
+#[test]
+fn work_is_bounded_before_it_starts() {
+    let server = Server::start("work", |c| {
+        c.limits.max_sync_pixel_samples = 1_000_000;
+        c.limits.max_sync_triangle_epochs = 1_000;
+    });
+    // 1 epoch × 512² px × 4² samples = 4.2 M samples: over the light-curve limit…
+    let mut v: serde_json::Value = serde_json::from_str(&scene_request("plate", 1)).unwrap();
+    v["method"] = "image".into();
+    v["image_size"] = 512.into();
+    v["image_samples"] = 4.into();
+    let r = post_json(server.addr, "/v1/lightcurves", &v.to_string());
+    assert_error(&r, 413, Some("image_size"));
+    assert!(r.text().contains("POST /v1/jobs") || r.text().contains("job"));
+    // …within a job's (100×)
+    assert_eq!(
+        post_json(server.addr, "/v1/jobs", &v.to_string()).status,
+        202
+    );
+
+    // triangles × epochs: the plate's 2 triangles × 600 epochs = 1,200 > 1,000
+    let r = post_json(
+        server.addr,
+        "/v1/lightcurves",
+        &scene_request_repeated("plate", 600),
+    );
+    assert_error(&r, 413, Some("epochs"));
+    let ok = post_json(
+        server.addr,
+        "/v1/lightcurves",
+        &scene_request_repeated("plate", 500),
+    );
+    assert_eq!(ok.status, 200, "{}", ok.text());
+}
+
+#[test]
+fn an_image_epoch_over_the_deadline_stops_within_the_epoch() {
+    // One epoch of the `image` method at 2048 px × 16² samples is ~10⁹ samples: minutes
+    // of work, all inside one epoch. Cancellation is polled once a row, so the slot must
+    // come back about one row's time after the deadline, not at the epoch's end.
+    let server = Server::start("image-deadline", |c| {
+        c.limits.request_timeout = Duration::from_millis(500);
+        c.limits.max_concurrent = 1;
+        c.limits.max_sync_pixel_samples = u64::MAX;
+    });
+    let mut v: serde_json::Value = serde_json::from_str(&scene_request("plate", 1)).unwrap();
+    v["method"] = "image".into();
+    v["image_size"] = 2048.into();
+    v["image_samples"] = 16.into();
+    let start = std::time::Instant::now();
+    let r = post_json(server.addr, "/v1/lightcurves", &v.to_string());
+    assert_error(&r, 503, None);
+    let answered = start.elapsed();
+    loop {
+        let m = get(server.addr, "/metrics").text();
+        if m.contains("glint_computations_running 0") {
+            break;
+        }
+        // A row of 2048 px × 256 samples takes well under a second even in a debug
+        // build; the whole epoch would take minutes.
+        assert!(
+            start.elapsed() < answered + Duration::from_secs(5),
+            "the slot was held past the deadline: {m}"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}

@@ -441,17 +441,61 @@ fn earthshine_without_earth() {
     check(&v).expect("default earthshine without earth");
 }
 
+/// The work a request asks for is bounded before any is done: triangles × epochs, and
+/// the pixel samples of the `image` method and of the thumbnails, each refused as a limit
+/// (HTTP 413) naming the field that makes it large.
+#[test]
+fn work_over_the_limits_is_refused_before_it_starts() {
+    let v = base();
+    let triangles = Scene::from_json(&v.to_string(), &Limits::unlimited())
+        .unwrap()
+        .mesh
+        .triangles
+        .len() as u64;
+    let epochs = v["epochs"].as_array().unwrap().len() as u64;
+    let at = |te: u64, px: u64| Limits {
+        max_triangle_epochs: te,
+        max_pixel_samples: px,
+        ..Limits::unlimited()
+    };
+    // exactly at the limit passes, one under fails
+    let n = triangles * epochs;
+    Scene::from_json(&v.to_string(), &at(n, 0)).expect("at the triangle-epoch limit");
+    let e = Scene::from_json(&v.to_string(), &at(n - 1, 0)).expect_err("one over");
+    assert!(e.is_limit() && e.field == "epochs", "{e}");
+    assert!(e.message.contains("triangle-epochs"), "{e}");
+
+    // the image method: epochs × size² × samples²
+    let mut img = v.clone();
+    img["method"] = json!("image");
+    img["image_size"] = json!(64);
+    img["image_samples"] = json!(2);
+    let px = epochs * 64 * 64 * 4;
+    Scene::from_json(&img.to_string(), &at(u64::MAX, px)).expect("at the pixel limit");
+    let e = Scene::from_json(&img.to_string(), &at(u64::MAX, px - 1)).expect_err("one over");
+    assert!(e.is_limit() && e.field == "image_size", "{e}");
+
+    // thumbnails count too, on top of the image method's samples
+    let mut th = img.clone();
+    th["thumbnails"] = json!({"size": 16, "samples": 1, "epochs": [0]});
+    Scene::from_json(&th.to_string(), &at(u64::MAX, px + 256)).expect("at the limit");
+    let e = Scene::from_json(&th.to_string(), &at(u64::MAX, px + 255)).expect_err("one over");
+    assert!(e.is_limit() && e.field == "thumbnails", "{e}");
+}
+
 #[test]
 fn limits_are_reported_as_limits() {
     let limits = Limits {
         max_triangles: 1,
         max_epochs: 10,
+        ..Limits::unlimited()
     };
     let e = Scene::from_json(&base().to_string(), &limits).expect_err("over the triangle limit");
     assert!(e.is_limit() && e.field == "object.mesh", "{e}");
     let limits = Limits {
         max_triangles: 10,
         max_epochs: 1,
+        ..Limits::unlimited()
     };
     let e = Scene::from_json(&base().to_string(), &limits).expect_err("over the epoch limit");
     assert!(e.is_limit() && e.field == "epochs", "{e}");

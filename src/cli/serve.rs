@@ -36,6 +36,13 @@ pub struct ServeArgs {
     /// Most epochs in one job.
     #[arg(long, env = "GLINT_MAX_JOB_EPOCHS", default_value_t = ServiceLimits::default().max_job_epochs)]
     pub max_job_epochs: usize,
+    /// Most triangles × epochs in one POST /v1/lightcurves (a job may ask 1000× this).
+    #[arg(long, env = "GLINT_MAX_SYNC_TRIANGLE_EPOCHS", default_value_t = ServiceLimits::default().max_sync_triangle_epochs)]
+    pub max_sync_triangle_epochs: u64,
+    /// Most pixel samples (`image` method and thumbnails) in one POST /v1/lightcurves (a
+    /// job may ask 100× this).
+    #[arg(long, env = "GLINT_MAX_SYNC_PIXEL_SAMPLES", default_value_t = ServiceLimits::default().max_sync_pixel_samples)]
+    pub max_sync_pixel_samples: u64,
     /// Computations at once (light curves and jobs); default: the number of cores.
     #[arg(long, env = "GLINT_MAX_CONCURRENT")]
     pub max_concurrent: Option<usize>,
@@ -69,6 +76,14 @@ impl ServeArgs {
             ("max-sync-epochs", self.max_sync_epochs),
             ("max-job-epochs", self.max_job_epochs),
             ("max-running-jobs", self.max_running_jobs),
+            (
+                "max-sync-triangle-epochs",
+                self.max_sync_triangle_epochs as usize,
+            ),
+            (
+                "max-sync-pixel-samples",
+                self.max_sync_pixel_samples as usize,
+            ),
         ] {
             anyhow::ensure!(v > 0, "--{name} must be at least 1");
         }
@@ -83,12 +98,15 @@ impl ServeArgs {
                 max_triangles: self.max_triangles,
                 max_sync_epochs: self.max_sync_epochs,
                 max_job_epochs: self.max_job_epochs,
+                max_sync_triangle_epochs: self.max_sync_triangle_epochs,
+                max_sync_pixel_samples: self.max_sync_pixel_samples,
                 max_concurrent: self.max_concurrent.unwrap_or(d.max_concurrent).max(1),
                 max_queued: self.max_queued,
                 max_running_jobs: self.max_running_jobs,
                 request_timeout: secs("request-timeout-secs", self.request_timeout_secs)?,
             },
             result_ttl: secs("result-ttl-secs", self.result_ttl_secs)?,
+            engine: crate::simulate_with,
         })
     }
 }
@@ -107,6 +125,8 @@ pub fn run_default() -> anyhow::Result<()> {
 /// Runs the service until SIGTERM or Ctrl-C, then shuts down gracefully.
 pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
     let config = args.config()?;
+    init_log()?;
+    crate::service::request_id::log_panics();
     let rt = tokio::runtime::Builder::new_multi_thread()
         .enable_all()
         .build()
@@ -129,6 +149,28 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
         eprintln!("glint: shutting down");
         running.shutdown().await
     })
+}
+
+/// The service's log on stderr: one line a request, faults with their backtraces. Its
+/// level comes from `GLINT_LOG` (`off`, `error`, `warn`, `info` — the default — `debug`,
+/// `trace`).
+fn init_log() -> anyhow::Result<()> {
+    use tracing_subscriber::filter::LevelFilter;
+    let level = match std::env::var("GLINT_LOG") {
+        Err(_) => LevelFilter::INFO,
+        Ok(v) => v.trim().parse::<LevelFilter>().map_err(|_| {
+            anyhow::anyhow!(
+                "GLINT_LOG must be one of off, error, warn, info, debug, trace; got `{v}`"
+            )
+        })?,
+    };
+    // A second initialisation (a test running the service twice) keeps the first.
+    let _ = tracing_subscriber::fmt()
+        .with_max_level(level)
+        .with_writer(std::io::stderr)
+        .with_ansi(false)
+        .try_init();
+    Ok(())
 }
 
 async fn shutdown_signal() {

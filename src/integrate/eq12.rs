@@ -98,7 +98,15 @@ impl EpochLight {
 }
 
 /// Evaluates one epoch; returns the result and the number of rays cast.
-pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochResult, u64) {
+///
+/// `cancelled` is polled inside the epoch where one epoch can take long (the `image`
+/// method's rows); once it returns true the result is meaningless and the caller drops it.
+pub fn evaluate(
+    p: &Prepared,
+    epoch: &Epoch,
+    scratch: &mut Scratch,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> (EpochResult, u64) {
     let scene = p.scene;
     let ill = &scene.illumination;
     let range = epoch.observer.length();
@@ -203,6 +211,7 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             v,
             l,
             earthshine.shadow_dir,
+            cancelled,
         );
     }
     // Faces whose shadows are clipped exactly need no budget. For sampled ones the

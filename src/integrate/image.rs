@@ -91,7 +91,9 @@ impl ImageView {
     /// towards `sun` and earthshine's shadow direction `earth` (`None`: unshadowed).
     /// `lit` lists the faces that send light: (face, side seen ±1, sunlit, earthlit).
     /// Afterwards [`ImageScratch::fractions`] gives each face's sampled fractions.
-    /// Returns the rays cast.
+    /// Returns the rays cast. Stops early (fractions meaningless) once `cancelled` returns
+    /// true: it is polled once a row, as a 4096-px view takes minutes.
+    #[allow(clippy::too_many_arguments)]
     pub fn sample(
         &self,
         scratch: &mut ImageScratch,
@@ -100,6 +102,7 @@ impl ImageView {
         view: DVec3,
         sun: DVec3,
         earth: Option<DVec3>,
+        cancelled: &(dyn Fn() -> bool + Sync),
     ) -> u64 {
         let ImageScratch {
             wanted,
@@ -111,7 +114,7 @@ impl ImageView {
         for (face, side, sun, earth) in lit {
             wanted[face as usize] = Wanted { sun, earth, side };
         }
-        self.visible_areas(faces, wanted, view, sun, earth, a_sun, a_earth)
+        self.visible_areas(faces, wanted, view, sun, earth, a_sun, a_earth, cancelled)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -124,6 +127,7 @@ impl ImageView {
         earth: Option<DVec3>,
         a_sun: &mut Vec<f64>,
         a_earth: &mut Vec<f64>,
+        cancelled: &(dyn Fn() -> bool + Sync),
     ) -> u64 {
         let nf = faces.faces.len();
         a_sun.clear();
@@ -147,6 +151,9 @@ impl ImageView {
         let sample_area = pixel * pixel / (s * s) as f64;
         let mut rays = 0u64;
         for py in 0..n {
+            if cancelled() {
+                break;
+            }
             for px in 0..n {
                 for sy in 0..s {
                     for sx in 0..s {

@@ -41,7 +41,8 @@ impl Progress {
     pub fn total(&self) -> usize {
         self.total.load(Ordering::Relaxed)
     }
-    /// Asks the running simulation to stop at the next epoch.
+    /// Asks the running simulation to stop: at its next epoch, or within the epoch where
+    /// one can take long (the `image` method's rows, the thumbnails' rows).
     pub fn cancel(&self) {
         self.cancel.store(true, Ordering::Relaxed);
     }
@@ -189,7 +190,8 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
             if progress.is_cancelled() {
                 return None;
             }
-            let (result, n) = eq12::evaluate(&prepared, epoch, scratch);
+            let (result, n) =
+                eq12::evaluate(&prepared, epoch, scratch, &|| progress.is_cancelled());
             rays.fetch_add(n, Ordering::Relaxed);
             progress.done.fetch_add(1, Ordering::Relaxed);
             Some(result)

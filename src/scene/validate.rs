@@ -47,10 +47,20 @@ impl fmt::Display for ValidationError {
 impl std::error::Error for ValidationError {}
 
 /// Size bounds on a request. The CLI uses [`Limits::unlimited`]; the service sets its own.
+///
+/// The last two bound the work before it starts, so that a short request cannot ask for
+/// hours of computation: a request over either is refused (HTTP 413) before any slot is
+/// taken.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Limits {
     pub max_triangles: usize,
     pub max_epochs: usize,
+    /// Most triangle-epochs (triangles × epochs): the analytic methods' work grows with it.
+    pub max_triangle_epochs: u64,
+    /// Most pixel samples rendered: the `image` method's epochs × `image_size`² ×
+    /// `image_samples`² plus the thumbnails' frames × size² × samples² (each sample one
+    /// camera ray and up to two shadow rays).
+    pub max_pixel_samples: u64,
 }
 
 impl Limits {
@@ -58,6 +68,8 @@ impl Limits {
         Limits {
             max_triangles: usize::MAX,
             max_epochs: usize::MAX,
+            max_triangle_epochs: u64::MAX,
+            max_pixel_samples: u64::MAX,
         }
     }
 }
@@ -270,6 +282,13 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         .as_ref()
         .map(|t| thumbnails(t, epochs.len()))
         .transpose()?;
+    work(
+        limits,
+        mesh.triangles.len(),
+        epochs.len(),
+        (method == Method::Image).then_some((image_size, image_samples)),
+        thumbnails.as_ref(),
+    )?;
     Ok(Scene {
         mesh,
         materials,
@@ -283,6 +302,65 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         thumbnails,
         clip_shadows: true,
     })
+}
+
+/// Refuses a request whose work, estimated before any is done, is over the limits:
+/// triangles × epochs, and the pixel samples of the `image` method (`image`: its size and
+/// samples per side) and of the thumbnails.
+fn work(
+    limits: &Limits,
+    triangles: usize,
+    epochs: usize,
+    image: Option<(u32, u32)>,
+    thumbnails: Option<&Thumbnails>,
+) -> Result<(), ValidationError> {
+    let triangle_epochs = triangles as u64 * epochs as u64;
+    if triangle_epochs > limits.max_triangle_epochs {
+        return err(
+            "epochs",
+            format!(
+                "too large a computation: {triangles} triangles × {epochs} epochs = \
+                 {triangle_epochs} triangle-epochs (limit {}); send fewer epochs, a coarser \
+                 mesh, or submit it as a job",
+                limits.max_triangle_epochs
+            ),
+        );
+    }
+    let image_samples = image.map_or(0, |(size, samples)| {
+        epochs as u64 * (size as u64).pow(2) * (samples as u64).pow(2)
+    });
+    let thumbnail_samples = thumbnails.map_or(0, |t| {
+        t.epochs.len() as u64 * (t.size as u64).pow(2) * (t.samples as u64).pow(2)
+    });
+    let (field, what) = if image_samples > limits.max_pixel_samples {
+        let (size, samples) = image.unwrap_or_default();
+        (
+            "image_size",
+            format!("{epochs} epochs × {size}² pixels × {samples}² samples = {image_samples}"),
+        )
+    } else if image_samples + thumbnail_samples > limits.max_pixel_samples {
+        (
+            "thumbnails",
+            format!(
+                "{thumbnail_samples} thumbnail samples{}",
+                if image_samples > 0 {
+                    format!(" + {image_samples} of the `image` method")
+                } else {
+                    String::new()
+                }
+            ),
+        )
+    } else {
+        return Ok(());
+    };
+    err(
+        field,
+        format!(
+            "too large a computation: {what} pixel samples (limit {}); render fewer or \
+             smaller images, or submit it as a job",
+            limits.max_pixel_samples
+        ),
+    )
 }
 
 /// Most pixel samples (frames × size² × samples²) one request may ask to render.

@@ -8,7 +8,19 @@ use axum::http::{header, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 use utoipa::ToSchema;
+
+tokio::task_local! {
+    /// The id of the request being handled: set by [`super::request_id::tag`] around
+    /// each request, read where an error is made so that a 5xx names it.
+    pub static REQUEST_ID: Arc<str>;
+}
+
+/// The id of the request this task is handling, if any.
+pub fn current_request_id() -> Option<Arc<str>> {
+    REQUEST_ID.try_with(|id| id.clone()).ok()
+}
 
 /// The body of every error response.
 #[derive(Debug, Clone, Serialize, Deserialize, ToSchema, PartialEq)]
@@ -20,6 +32,10 @@ pub struct ErrorBody {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(example = "epochs[3].sun")]
     pub field: Option<String>,
+    /// On a 5xx: the request's id (also in the `X-Request-Id` header). The service log has
+    /// the fault under it; quote it when reporting the fault.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub request_id: Option<String>,
 }
 
 /// An error answer: status, body, and optionally seconds for `Retry-After`.
@@ -38,6 +54,7 @@ impl ApiError {
             body: ErrorBody {
                 error: error.into(),
                 field: None,
+                request_id: None,
             },
             retry_after_s: None,
         }
@@ -78,6 +95,43 @@ impl ApiError {
             StatusCode::INTERNAL_SERVER_ERROR,
             format!("internal error: {error}"),
         )
+    }
+
+    /// A panic (in a handler or in a computation it waited for). The client learns that it
+    /// happened and under which request id, never the panic's text: that goes to the log
+    /// (the panic hook of `glint serve` logs the backtrace).
+    pub fn from_panic(what: &str, payload: &(dyn std::any::Any + Send)) -> Self {
+        let text = payload
+            .downcast_ref::<&str>()
+            .copied()
+            .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
+            .unwrap_or("(no message)");
+        let id = current_request_id();
+        tracing::error!(
+            request_id = id.as_deref().unwrap_or("-"),
+            "{what} panicked: {text}"
+        );
+        Self::new(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            format!(
+                "internal error: {what} failed unexpectedly; the service log has the details \
+                 under request id {}",
+                id.as_deref().unwrap_or("(none)")
+            ),
+        )
+    }
+
+    /// A blocking task that did not return: a panic (see [`Self::from_panic`]) or the
+    /// runtime shutting down.
+    pub fn from_join(what: &str, e: tokio::task::JoinError) -> Self {
+        if e.is_panic() {
+            Self::from_panic(what, &*e.into_panic())
+        } else {
+            Self::new(
+                StatusCode::SERVICE_UNAVAILABLE,
+                format!("{what} was stopped: the service is shutting down"),
+            )
+        }
     }
 
     /// Maps the engine's validation error: syntax errors are 400, size limits 413, and
@@ -126,7 +180,10 @@ impl From<QueryRejection> for ApiError {
 }
 
 impl IntoResponse for ApiError {
-    fn into_response(self) -> Response {
+    fn into_response(mut self) -> Response {
+        if self.status.is_server_error() && self.body.request_id.is_none() {
+            self.body.request_id = current_request_id().map(|id| id.to_string());
+        }
         let mut resp = (self.status, Json(self.body)).into_response();
         if let Some(s) = self.retry_after_s {
             resp.headers_mut()

@@ -15,7 +15,7 @@ use super::limits::{ServiceLimits, Slots};
 use super::metrics::Metrics;
 pub use super::record::{JobRecord, JobState};
 use super::store::{Store, StoreError};
-use crate::integrate::{simulate_with, Cancelled, Progress};
+use crate::integrate::{Cancelled, Progress};
 use crate::scene::{validate, Scene};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -76,6 +76,7 @@ pub struct Jobs {
     pool: Arc<rayon::ThreadPool>,
     limits: ServiceLimits,
     ttl: Duration,
+    engine: super::Engine,
     table: Mutex<HashMap<String, Entry>>,
     /// Serialises store writes so each writes the latest in-memory record.
     write_lock: Mutex<()>,
@@ -109,6 +110,7 @@ impl Jobs {
         pool: Arc<rayon::ThreadPool>,
         limits: ServiceLimits,
         ttl: Duration,
+        engine: super::Engine,
     ) -> Result<Arc<Jobs>, StoreError> {
         let (tx, rx) = mpsc::unbounded_channel();
         let mut records = store.load_all()?;
@@ -138,6 +140,7 @@ impl Jobs {
             job_slots: Arc::new(Semaphore::new(limits.max_running_jobs.max(1))),
             limits,
             ttl,
+            engine,
             table: Mutex::new(table),
             write_lock: Mutex::new(()),
             queue: tx,
@@ -189,7 +192,7 @@ impl Jobs {
             Ok(rec)
         })
         .await
-        .map_err(ApiError::internal)??;
+        .map_err(|e| ApiError::from_join("validating the job", e))??;
         let id = rec.id.clone();
         let status = {
             let mut t = self.table();
@@ -286,7 +289,7 @@ impl Jobs {
         let key = id.to_string();
         tokio::task::spawn_blocking(move || store.result(&key))
             .await
-            .map_err(ApiError::internal)?
+            .map_err(|e| ApiError::from_join("reading the result", e))?
             .map_err(ApiError::internal)?
             // Removed by expiry between the two looks.
             .ok_or_else(|| no_such_job(id))
@@ -320,7 +323,7 @@ impl Jobs {
             }
         })
         .await
-        .map_err(ApiError::internal)?
+        .map_err(|e| ApiError::from_join("removing the job", e))?
         .map_err(ApiError::internal)?;
         if cancelled {
             let s = self.status(id).ok_or_else(|| no_such_job(id))?;
@@ -404,7 +407,7 @@ impl Jobs {
             let scene = validate::parse_request(text)
                 .and_then(|r| Scene::from_request(&r, &me.limits.job_limits()))
                 .map_err(|e| e.to_string())?;
-            match me.pool.install(|| simulate_with(&scene, &progress)) {
+            match me.pool.install(|| (me.engine)(&scene, &progress)) {
                 Ok(resp) => {
                     let json = serde_json::to_vec(&resp).map_err(|e| e.to_string())?;
                     Ok(Some((json, resp.epochs.len())))
@@ -413,7 +416,19 @@ impl Jobs {
             }
         })
         .await
-        .unwrap_or_else(|e| Err(format!("the computation stopped: {e}")));
+        .unwrap_or_else(|e| {
+            // The panic's text and backtrace go to the log, not to the job's status.
+            let what = if e.is_panic() {
+                "panicked"
+            } else {
+                "was stopped"
+            };
+            tracing::error!(job = id, "the job's computation {what}");
+            Err(format!(
+                "internal error: the computation {what}; the service log has the details \
+                 under job {id}"
+            ))
+        });
 
         let outcome = match outcome {
             Ok(Some(done)) => Ok(done),

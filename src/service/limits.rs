@@ -17,6 +17,11 @@ pub struct ServiceLimits {
     pub max_sync_epochs: usize,
     /// Most epochs in one job.
     pub max_job_epochs: usize,
+    /// Most triangles × epochs in one `POST /v1/lightcurves` (jobs: 1000× this).
+    pub max_sync_triangle_epochs: u64,
+    /// Most pixel samples (the `image` method's and the thumbnails') in one
+    /// `POST /v1/lightcurves` (jobs: 100× this).
+    pub max_sync_pixel_samples: u64,
     /// Computations running at once (synchronous requests and jobs together).
     pub max_concurrent: usize,
     /// Synchronous requests allowed to wait for a slot; beyond this they get 503.
@@ -35,6 +40,13 @@ impl Default for ServiceLimits {
             max_triangles: 1_000_000,
             max_sync_epochs: 20_000,
             max_job_epochs: 2_000_000,
+            // ~10–20 min of the silhouette method on two cores at the suite's speed: far
+            // over the request timeout, but every request that could finish within it
+            // passes
+            max_sync_triangle_epochs: 2_000_000_000,
+            // ~10 M samples/s on one core: 2.5e8 is ~25 s of one core, within the 60 s
+            // request timeout; a 2048-px, 16²-sample image (1.07e9) is a job's work
+            max_sync_pixel_samples: 250_000_000,
             max_concurrent: cores,
             max_queued: 64,
             max_running_jobs: 1,
@@ -49,6 +61,8 @@ impl ServiceLimits {
         Limits {
             max_triangles: self.max_triangles,
             max_epochs: self.max_sync_epochs,
+            max_triangle_epochs: self.max_sync_triangle_epochs,
+            max_pixel_samples: self.max_sync_pixel_samples,
         }
     }
 
@@ -57,6 +71,8 @@ impl ServiceLimits {
         Limits {
             max_triangles: self.max_triangles,
             max_epochs: self.max_job_epochs,
+            max_triangle_epochs: self.max_sync_triangle_epochs.saturating_mul(1000),
+            max_pixel_samples: self.max_sync_pixel_samples.saturating_mul(100),
         }
     }
 }

@@ -1,7 +1,7 @@
 //! The HTTP service: light curves over REST, batch jobs that survive restarts, OpenAPI.
 //!
 //! ```text
-//! metrics ─▶ JSON errors ─▶ timeout ─▶ auth ─▶ body limit ─▶ routes
+//! request id ─▶ metrics ─▶ JSON errors ─▶ catch panic ─▶ timeout ─▶ auth ─▶ body limit ─▶ routes
 //!                                                  ├─ /v1/lightcurves: validate → slot → engine (light-curve pool)
 //!                                                  ├─ /v1/jobs…: jobs (durable queue, redb store, job pool)
 //!                                                  └─ /v1/scenes, /healthz, /readyz, /metrics, /docs
@@ -15,11 +15,14 @@ pub mod limits;
 pub mod metrics;
 pub mod openapi;
 pub mod record;
+pub mod request_id;
 pub mod routes;
 pub mod scenes;
 pub mod store;
 pub mod threads;
 
+use crate::integrate::{Cancelled, Progress};
+use crate::scene::Scene;
 use axum::extract::{DefaultBodyLimit, Request, State};
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::middleware::{from_fn, from_fn_with_state, Next};
@@ -34,6 +37,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
 use store::Store;
+use tower_http::catch_panic::CatchPanicLayer;
 use tower_http::timeout::TimeoutLayer;
 use utoipa::OpenApi;
 use utoipa_axum::router::OpenApiRouter;
@@ -54,7 +58,14 @@ pub struct Config {
     pub limits: ServiceLimits,
     /// How long finished jobs and their results are kept.
     pub result_ttl: Duration,
+    /// The computation behind light curves and jobs.
+    pub engine: Engine,
 }
+
+/// The computation the service runs for a light curve or a job: [`crate::simulate_with`].
+/// A seam for the tests: a failing engine shows that a fault inside a computation is
+/// answered as a 500 naming the request id, and that its slot comes back.
+pub type Engine = fn(&Scene, &Progress) -> Result<crate::scene::Response, Cancelled>;
 
 impl Default for Config {
     fn default() -> Self {
@@ -65,6 +76,7 @@ impl Default for Config {
             allow_unauthenticated: false,
             limits: ServiceLimits::default(),
             result_ttl: Duration::from_secs(7 * 24 * 3600),
+            engine: crate::simulate_with,
         }
     }
 }
@@ -78,6 +90,7 @@ pub struct AppState {
     pub metrics: Arc<Metrics>,
     pub store: Arc<Store>,
     pub pools: threads::Pools,
+    pub engine: Engine,
 }
 
 /// The documented routes, with their OpenAPI paths.
@@ -152,6 +165,7 @@ pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
         pools.jobs.clone(),
         limits.clone(),
         config.result_ttl,
+        config.engine,
     )?;
     let state = AppState {
         limits: Arc::new(limits.clone()),
@@ -160,6 +174,7 @@ pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
         metrics: metrics.clone(),
         store,
         pools,
+        engine: config.engine,
     };
     let (router, spec) = api_router().split_for_parts();
     let token: Option<Arc<str>> = config
@@ -179,8 +194,10 @@ pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
             StatusCode::REQUEST_TIMEOUT,
             limits.request_timeout + Duration::from_secs(5),
         ))
+        .layer(CatchPanicLayer::custom(request_id::panicked))
         .layer(from_fn(errors::json_errors))
-        .layer(from_fn_with_state(metrics, metrics::track));
+        .layer(from_fn_with_state(metrics, metrics::track))
+        .layer(from_fn(request_id::tag));
     Ok((router, state))
 }
 

@@ -6,7 +6,7 @@ use super::jobs::{no_such_job, Deleted, JobState, JobStatus};
 use super::metrics::Gauges;
 use super::scenes::{self, SceneSummary};
 use super::AppState;
-use crate::integrate::{simulate_with, Progress};
+use crate::integrate::Progress;
 use crate::report::csv::to_csv;
 use crate::scene::{validate, Request, Response, Scene};
 use axum::body::Bytes;
@@ -110,7 +110,7 @@ async fn parse_scene(body: Bytes, limits: crate::scene::Limits) -> Result<Scene,
         Ok(Scene::from_request(&request, &limits)?)
     })
     .await
-    .map_err(ApiError::internal)?
+    .map_err(|e| ApiError::from_join("validating the request", e))?
 }
 
 /// Cancels the computation when the handler is dropped (timeout, client gone).
@@ -157,9 +157,10 @@ pub async fn post_lightcurve(
         let slot = st.slots.acquire().await.map_err(|_| ApiError::busy(1))?;
         let p = progress.clone();
         let pool = st.pools.sync.clone();
+        let engine = st.engine;
         tokio::task::spawn_blocking(move || {
-            let _slot = slot; // released when the computation has really ended
-            let resp = pool.install(|| simulate_with(&scene, &p)).ok()?;
+            let _slot = slot; // released when the computation has really ended (or unwound)
+            let resp = pool.install(|| engine(&scene, &p)).ok()?;
             let n = resp.epochs.len();
             let bytes = if csv {
                 to_csv(&resp).into_bytes()
@@ -169,7 +170,7 @@ pub async fn post_lightcurve(
             Some((bytes, n))
         })
         .await
-        .map_err(ApiError::internal)?
+        .map_err(|e| ApiError::from_join("the computation", e))?
         .ok_or_else(|| ApiError::internal("the computation was cancelled"))
     };
     let (bytes, n) = tokio::time::timeout(timeout, work).await.map_err(|_| {
@@ -312,7 +313,7 @@ pub async fn get_job_result(
         serde_json::from_slice::<Response>(&json).map(|r| to_csv(&r).into_bytes())
     })
     .await
-    .map_err(ApiError::internal)?
+    .map_err(|e| ApiError::from_join("converting the result", e))?
     .map_err(ApiError::internal)?;
     Ok(body_response(csv, true))
 }
@@ -355,7 +356,7 @@ pub async fn get_thumbnail(
             .map_err(ApiError::internal)
     })
     .await
-    .map_err(ApiError::internal)??;
+    .map_err(|e| ApiError::from_join("reading the image", e))??;
     Ok((
         [(header::CONTENT_TYPE, HeaderValue::from_static("image/png"))],
         png,

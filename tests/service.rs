@@ -351,6 +351,18 @@ fn bearer_token_when_set_and_loopback_when_not() {
             b"",
         );
         assert_eq!(r.status, 200, "{path}: {}", r.text());
+        // the scheme is case-insensitive (RFC 9110 §11.1), the token is not
+        for auth in ["bearer s3cret", "BEARER  s3cret"] {
+            let r = http(addr, "GET", path, &[("Authorization", auth)], b"");
+            assert_eq!(r.status, 200, "{auth} on {path}: {}", r.text());
+        }
+        for auth in ["Bearer S3CRET", "Basic s3cret", "Bearers3cret"] {
+            assert_error(
+                &http(addr, "GET", path, &[("Authorization", auth)], b""),
+                401,
+                None,
+            );
+        }
     }
     let req = scene_request("plate", 2);
     assert_error(&post_json(addr, "/v1/lightcurves", &req), 401, None);
@@ -718,5 +730,112 @@ fn an_image_epoch_over_the_deadline_stops_within_the_epoch() {
             "the slot was held past the deadline: {m}"
         );
         std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+#[test]
+fn jobs_beyond_the_queue_limit_get_429_and_room_comes_back() {
+    let server = Server::start("queue-limit", |c| {
+        c.limits.max_queued_jobs = 2;
+        c.limits.max_running_jobs = 1;
+    });
+    let big = scene_request_repeated("box-wing", 40_000);
+    let ids: Vec<String> = (0..2)
+        .map(|_| {
+            let r = post_json(server.addr, "/v1/jobs", &big);
+            assert_eq!(r.status, 202, "{}", r.text());
+            r.json()["id"].as_str().unwrap().to_string()
+        })
+        .collect();
+    let r = post_json(server.addr, "/v1/jobs", &big);
+    assert_error(&r, 429, None);
+    assert!(r.header("retry-after").is_some());
+    assert!(r.text().contains("limit 2"), "{}", r.text());
+    // a cancelled job no longer counts
+    assert_eq!(
+        http(
+            server.addr,
+            "DELETE",
+            &format!("/v1/jobs/{}", ids[1]),
+            &[],
+            b""
+        )
+        .status,
+        200
+    );
+    assert_eq!(post_json(server.addr, "/v1/jobs", &big).status, 202);
+    for j in get(server.addr, "/v1/jobs").json().as_array().unwrap() {
+        let id = j["id"].as_str().unwrap();
+        http(server.addr, "DELETE", &format!("/v1/jobs/{id}"), &[], b"");
+    }
+}
+
+#[test]
+fn an_idempotency_key_makes_a_retried_submission_find_its_job() {
+    let server = Server::start("idempotency", |_| {});
+    let req = scene_request("plate", 3);
+    let post = |key: &str, body: &str| {
+        http(
+            server.addr,
+            "POST",
+            "/v1/jobs",
+            &[JSON, ("Idempotency-Key", key)],
+            body.as_bytes(),
+        )
+    };
+    let first = post("retry-me-1", &req);
+    assert_eq!(first.status, 202, "{}", first.text());
+    let id = first.json()["id"].as_str().unwrap().to_string();
+    // the client lost the 202 and retries: the same job, said to be a replay
+    let again = post("retry-me-1", &req);
+    assert_eq!(again.status, 202, "{}", again.text());
+    assert_eq!(again.json()["id"], id.as_str());
+    assert_eq!(again.header("idempotent-replayed"), Some("true"));
+    assert_eq!(again.header("location"), first.header("location"));
+    assert_eq!(
+        get(server.addr, "/v1/jobs")
+            .json()
+            .as_array()
+            .unwrap()
+            .len(),
+        1
+    );
+    // the same key with another body is a client error naming the header
+    let other = scene_request("plate", 2);
+    assert_error(&post("retry-me-1", &other), 422, Some("Idempotency-Key"));
+    // another key makes another job; a malformed key is refused
+    let r = post("retry-me-2", &req);
+    assert_eq!(r.status, 202);
+    assert_ne!(r.json()["id"], id.as_str());
+    assert_error(&post(&"k".repeat(256), &req), 422, Some("Idempotency-Key"));
+}
+
+#[test]
+fn concurrent_deletes_of_a_running_job_say_what_each_did() {
+    let server = Server::start("delete-race", |c| c.limits.max_running_jobs = 1);
+    let big = scene_request_repeated("box-wing", 40_000);
+    for _ in 0..4 {
+        let id = post_json(server.addr, "/v1/jobs", &big).json()["id"]
+            .as_str()
+            .unwrap()
+            .to_string();
+        let addr = server.addr;
+        let path = format!("/v1/jobs/{id}");
+        let answers: Vec<Reply> = std::thread::scope(|s| {
+            let a = s.spawn(|| http(addr, "DELETE", &path, &[], b""));
+            let b = s.spawn(|| http(addr, "DELETE", &path, &[], b""));
+            vec![a.join().unwrap(), b.join().unwrap()]
+        });
+        let mut codes: Vec<u16> = answers.iter().map(|r| r.status).collect();
+        codes.sort();
+        // exactly one cancelled it (200, with the cancelled status); the other either
+        // removed the cancelled job (204) or found it gone (404)
+        assert!(
+            codes == [200, 204] || codes == [200, 404],
+            "{codes:?}: {:?}",
+            answers.iter().map(Reply::text).collect::<Vec<_>>()
+        );
+        let cancelled = answers.iter().find(|r| r.status == 200).unwrap();
+        assert_eq!(cancelled.json()["state"], "cancelled");
     }
 }

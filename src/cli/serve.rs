@@ -52,6 +52,9 @@ pub struct ServeArgs {
     /// Jobs running at once.
     #[arg(long, env = "GLINT_MAX_RUNNING_JOBS", default_value_t = ServiceLimits::default().max_running_jobs)]
     pub max_running_jobs: usize,
+    /// Jobs queued or running at once; more submissions get 429.
+    #[arg(long, env = "GLINT_MAX_QUEUED_JOBS", default_value_t = ServiceLimits::default().max_queued_jobs)]
+    pub max_queued_jobs: usize,
     /// Time a light-curve request may take (waiting included), seconds.
     #[arg(long, env = "GLINT_REQUEST_TIMEOUT_SECS", default_value_t = 60.0)]
     pub request_timeout_secs: f64,
@@ -76,6 +79,7 @@ impl ServeArgs {
             ("max-sync-epochs", self.max_sync_epochs),
             ("max-job-epochs", self.max_job_epochs),
             ("max-running-jobs", self.max_running_jobs),
+            ("max-queued-jobs", self.max_queued_jobs),
             (
                 "max-sync-triangle-epochs",
                 self.max_sync_triangle_epochs as usize,
@@ -103,6 +107,7 @@ impl ServeArgs {
                 max_concurrent: self.max_concurrent.unwrap_or(d.max_concurrent).max(1),
                 max_queued: self.max_queued,
                 max_running_jobs: self.max_running_jobs,
+                max_queued_jobs: self.max_queued_jobs,
                 request_timeout: secs("request-timeout-secs", self.request_timeout_secs)?,
             },
             result_ttl: secs("result-ttl-secs", self.result_ttl_secs)?,

@@ -28,6 +28,8 @@ pub struct ServiceLimits {
     pub max_queued: usize,
     /// Jobs running at once (each also takes a computation slot).
     pub max_running_jobs: usize,
+    /// Jobs queued or running; beyond, a submission gets 429.
+    pub max_queued_jobs: usize,
     /// Time a synchronous request may take, waiting included.
     pub request_timeout: Duration,
 }
@@ -50,6 +52,7 @@ impl Default for ServiceLimits {
             max_concurrent: cores,
             max_queued: 64,
             max_running_jobs: 1,
+            max_queued_jobs: 1000,
             request_timeout: Duration::from_secs(60),
         }
     }

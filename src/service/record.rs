@@ -57,4 +57,8 @@ pub struct JobRecord {
     pub error: Option<String>,
     /// How many times the job was started (more than 1 after a restart mid-run).
     pub attempts: u32,
+    /// The client's `Idempotency-Key` at submission, and the SHA-256 (hex) of the body
+    /// it came with: a retry with the same key finds this job instead of making another.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub idempotency: Option<(String, String)>,
 }

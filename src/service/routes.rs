@@ -202,21 +202,53 @@ pub async fn post_lightcurve(
         (status = 401, description = "Missing or wrong bearer token", body = ErrorBody),
         (status = 413, description = "Body, mesh or epoch count over the job limits", body = ErrorBody),
         (status = 415, description = "Content-Type is not application/json", body = ErrorBody),
-        (status = 422, description = "A field has a wrong type or value; `field` names it", body = ErrorBody),
-    )
+        (status = 422, description = "A field has a wrong type or value, or the `Idempotency-Key` was used with another body; `field` names it", body = ErrorBody),
+        (status = 429, description = "Too many jobs queued or running (see `Retry-After`)", body = ErrorBody),
+    ),
+    params(("Idempotency-Key" = Option<String>, Header,
+        description = "A client's key for this submission (1–255 visible ASCII characters). \
+                       A retry with the same key and body answers the job made the first \
+                       time (with `Idempotent-Replayed: true`) instead of making another, \
+                       for as long as that job is kept."))
 )]
 pub async fn post_job(
     State(st): State<AppState>,
+    headers: HeaderMap,
     JsonBody(body): JsonBody,
 ) -> Result<HttpResponse, ApiError> {
-    let status = st.jobs.submit(body).await?;
+    let key = idempotency_key(&headers)?;
+    let (status, replayed) = st.jobs.submit(body, key).await?;
     let location = format!("/v1/jobs/{}", status.id);
-    Ok((
+    let mut resp = (
         StatusCode::ACCEPTED,
         [(header::LOCATION, location)],
         Json(status),
     )
-        .into_response())
+        .into_response();
+    if replayed {
+        resp.headers_mut()
+            .insert("idempotent-replayed", HeaderValue::from_static("true"));
+    }
+    Ok(resp)
+}
+
+/// The `Idempotency-Key` header, checked: 1–255 visible ASCII characters.
+fn idempotency_key(headers: &HeaderMap) -> Result<Option<String>, ApiError> {
+    let Some(v) = headers.get("idempotency-key") else {
+        return Ok(None);
+    };
+    let bad = || {
+        ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "must be 1 to 255 visible ASCII characters",
+        )
+        .with_field("Idempotency-Key")
+    };
+    let k = v.to_str().map_err(|_| bad())?.trim();
+    if k.is_empty() || k.len() > 255 || !k.bytes().all(|b| b.is_ascii_graphic()) {
+        return Err(bad());
+    }
+    Ok(Some(k.to_string()))
 }
 
 /// Query of `GET /v1/jobs`.

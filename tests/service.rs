@@ -126,7 +126,12 @@ fn job_submitted_polled_fetched_and_removed() {
         serde_json::json!([])
     );
     assert_error(&get(server.addr, "/v1/jobs?limit=0"), 400, Some("limit"));
-    assert_error(&get(server.addr, "/v1/jobs?state=sleeping"), 400, None);
+    assert_error(
+        &get(server.addr, "/v1/jobs?state=sleeping"),
+        400,
+        Some("state"),
+    );
+    assert_error(&get(server.addr, "/v1/jobs?limit=abc"), 400, Some("limit"));
 
     let m = get(server.addr, "/metrics").text();
     assert!(m.contains("glint_jobs{state=\"done\"} 1"), "{m}");
@@ -269,7 +274,24 @@ fn every_error_class_has_the_json_shape() {
         400,
         None,
     );
-    assert_error(&post_json(addr, "/v1/lightcurves", ""), 400, None);
+    assert_error(&post_json(addr, "/v1/lightcurves", ""), 400, Some("body"));
+    // 422: a field given twice, an array of the wrong length, each named
+    assert_error(
+        &post_json(
+            addr,
+            "/v1/lightcurves",
+            r#"{"method": "auto", "method": "image"}"#,
+        ),
+        422,
+        Some("method"),
+    );
+    let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
+    v["epochs"][0]["sun"] = serde_json::json!([1, 0, 0, 1]);
+    assert_error(
+        &post_json(addr, "/v1/lightcurves", &v.to_string()),
+        422,
+        Some("epochs[0].sun"),
+    );
     // 422: unknown field, wrong type, bad value — each naming its field.
     let mut v: serde_json::Value = serde_json::from_str(&ok).unwrap();
     v["colour"] = "red".into();
@@ -295,8 +317,12 @@ fn every_error_class_has_the_json_shape() {
     // 413: body over the byte limit; epochs over the synchronous limit (a job takes them);
     // epochs over the job limit; a mesh over the triangle limit.
     let huge = format!("{{\"pad\": \"{}\"}}", "x".repeat(100 * 1024));
-    assert_error(&post_json(addr, "/v1/lightcurves", &huge), 413, None);
-    assert_error(&post_json(addr, "/v1/jobs", &huge), 413, None);
+    assert_error(
+        &post_json(addr, "/v1/lightcurves", &huge),
+        413,
+        Some("body"),
+    );
+    assert_error(&post_json(addr, "/v1/jobs", &huge), 413, Some("body"));
     let eleven = scene_request("plate", 11);
     assert_error(
         &post_json(addr, "/v1/lightcurves", &eleven),

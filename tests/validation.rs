@@ -483,6 +483,24 @@ fn work_over_the_limits_is_refused_before_it_starts() {
     assert!(e.is_limit() && e.field == "thumbnails", "{e}");
 }
 
+/// A fixed-length array with an element too many or too few is a wrong value of that
+/// field (422), never "invalid JSON" (400).
+#[test]
+fn fixed_length_arrays_of_the_wrong_length_name_their_field() {
+    for (bad, field) in [
+        (json!([1, 0, 0, 5]), "epochs[0].sun"),
+        (json!([1, 0]), "epochs[0].sun"),
+    ] {
+        let e = expect_field(|v| v["epochs"][0]["sun"] = bad.clone(), field);
+        assert!(!e.message.starts_with("invalid JSON"), "{e}");
+    }
+    let e = expect_field(
+        |v| v["illumination"]["band_um"] = json!([0.4, 0.7, 0.9]),
+        "illumination.band_um",
+    );
+    assert!(e.message.contains("more elements"), "{e}");
+}
+
 #[test]
 fn limits_are_reported_as_limits() {
     let limits = Limits {

@@ -231,6 +231,7 @@ pub struct MaterialObject {
     /// its plane; a face whose normal is within 8.1° of it takes instead a fixed direction
     /// perpendicular to it. Default [1, 0, 0], the body's x axis.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(min_items = 3, max_items = 3)]
     pub tangent: Option<[f64; 3]>,
     /// Thin sheet lit and seen from both sides (solar panels). Default false.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -286,12 +287,15 @@ pub struct EpochSpec {
     #[schema(value_type = f64, example = 0.0)]
     pub t: TimeSpec,
     /// Direction from the object to the Sun (any length; normalised).
+    #[schema(min_items = 3, max_items = 3)]
     pub sun: [f64; 3],
     /// Vector from the object to the observer, metres; its length is the range R. It must
     /// lie outside the mesh's bounding sphere (Eq. 12 is a far-field sum).
+    #[schema(min_items = 3, max_items = 3)]
     pub observer: [f64; 3],
     /// Vector from the object to the Earth's centre, metres. Needed for earthshine and eclipses.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(min_items = 3, max_items = 3)]
     pub earth: Option<[f64; 3]>,
     /// Object–Sun distance in AU. Default 1.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -299,6 +303,7 @@ pub struct EpochSpec {
     /// Body-to-inertial attitude quaternion [w, x, y, z]; when given, `sun`, `observer`
     /// and `earth` are inertial and are rotated into the body frame.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(min_items = 4, max_items = 4)]
     pub attitude: Option<[f64; 4]>,
 }
 
@@ -309,6 +314,7 @@ pub struct IlluminationSpec {
     /// Spectral band [λ1, λ2] in µm. Default [0.4, 0.7]. The Sun's irradiance in it at 1 AU
     /// must be at least 1e-200 W/m² (not so only far in the Wien tail of a cold Sun).
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(min_items = 2, max_items = 2)]
     pub band_um: Option<[f64; 2]>,
     /// Sun blackbody temperature in K. Default 5900 (the paper's value).
     #[serde(default, skip_serializing_if = "Option::is_none")]

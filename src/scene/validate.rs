@@ -90,8 +90,12 @@ pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
         }
         let inner = e.into_inner();
         let message = inner.to_string();
-        // Name the unknown field itself; serde_path_to_error's path may already end with it.
-        if let Some(rest) = message.strip_prefix("unknown field `") {
+        // Name the unknown or repeated field itself; serde_path_to_error's path may
+        // already end with it.
+        let named_in = message
+            .strip_prefix("unknown field `")
+            .or_else(|| message.strip_prefix("duplicate field `"));
+        if let Some(rest) = named_in {
             if let Some(name) = rest.split('`').next() {
                 let named = field == name || field.ends_with(&format!(".{name}"));
                 field = if named {
@@ -105,7 +109,12 @@ pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
         }
         // Strip serde's "at line L column C" suffix from the field-level message but
         // keep it for syntax errors, where there is no field to name.
-        let message = if inner.is_syntax() || inner.is_eof() {
+        // serde reads a fixed-length array ([f64; 3]) and then expects its end: a longer
+        // one reports "trailing characters" at the field, which is a wrong value (422),
+        // not broken JSON
+        let message = if message.starts_with("trailing characters") && !field.is_empty() {
+            "more elements than this fixed-length array takes".to_string()
+        } else if inner.is_syntax() || inner.is_eof() {
             format!("invalid JSON: {message}")
         } else {
             match message.rfind(" at line ") {

@@ -163,7 +163,7 @@ impl From<BytesRejection> for ApiError {
         } else {
             r.body_text()
         };
-        Self::new(status, msg)
+        Self::new(status, msg).with_field("body")
     }
 }
 
@@ -175,7 +175,19 @@ impl From<PathRejection> for ApiError {
 
 impl From<QueryRejection> for ApiError {
     fn from(r: QueryRejection) -> Self {
-        Self::new(StatusCode::BAD_REQUEST, r.body_text())
+        // axum says "Failed to deserialize query string: limit: invalid digit …": the
+        // parameter's name is the part before the second colon
+        let text = r.body_text();
+        let field = text
+            .strip_prefix("Failed to deserialize query string: ")
+            .and_then(|rest| rest.split_once(": "))
+            .map(|(name, _)| name.to_string())
+            .filter(|name| name.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_'));
+        let e = Self::new(StatusCode::BAD_REQUEST, text);
+        match field {
+            Some(f) => e.with_field(f),
+            None => e,
+        }
     }
 }
 

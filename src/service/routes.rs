@@ -67,7 +67,7 @@ impl<S: Send + Sync> FromRequest<S> for JsonBody {
         }
         let body = Bytes::from_request(req, state).await?;
         if body.iter().all(u8::is_ascii_whitespace) {
-            return Err(ApiError::bad_request("the request body is empty"));
+            return Err(ApiError::bad_request("the request body is empty").with_field("body"));
         }
         Ok(JsonBody(body))
     }
@@ -256,6 +256,7 @@ fn idempotency_key(headers: &HeaderMap) -> Result<Option<String>, ApiError> {
 #[into_params(parameter_in = Query)]
 pub struct ListQuery {
     /// Most jobs to list (newest first), 1–1000; default 100.
+    #[param(minimum = 1, maximum = 1000)]
     pub limit: Option<usize>,
     /// Only jobs in this state.
     pub state: Option<JobState>,

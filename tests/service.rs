@@ -865,3 +865,31 @@ fn concurrent_deletes_of_a_running_job_say_what_each_did() {
         assert_eq!(cancelled.json()["state"], "cancelled");
     }
 }
+
+#[test]
+fn stored_results_are_bounded_and_deleting_makes_room() {
+    let server = Server::start("result-bytes", |c| c.limits.max_result_bytes = 1);
+    let req = scene_request("plate", 3);
+    let id = post_json(server.addr, "/v1/jobs", &req).json()["id"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert_eq!(
+        wait_final(server.addr, &id, &[], Duration::from_secs(60))["state"],
+        "done"
+    );
+    // one stored result is over a 1-byte budget: no more submissions…
+    let r = post_json(server.addr, "/v1/jobs", &req);
+    assert_error(&r, 507, None);
+    assert!(r.text().contains("DELETE"), "{}", r.text());
+    // …until it is fetched and deleted
+    assert_eq!(
+        get(server.addr, &format!("/v1/jobs/{id}/result")).status,
+        200
+    );
+    assert_eq!(
+        http(server.addr, "DELETE", &format!("/v1/jobs/{id}"), &[], b"").status,
+        204
+    );
+    assert_eq!(post_json(server.addr, "/v1/jobs", &req).status, 202);
+}

@@ -55,6 +55,10 @@ pub struct ServeArgs {
     /// Jobs queued or running at once; more submissions get 429.
     #[arg(long, env = "GLINT_MAX_QUEUED_JOBS", default_value_t = ServiceLimits::default().max_queued_jobs)]
     pub max_queued_jobs: usize,
+    /// Bytes of finished jobs' results kept; beyond, submissions get 507 until some are
+    /// deleted or expire.
+    #[arg(long, env = "GLINT_MAX_RESULT_BYTES", default_value_t = ServiceLimits::default().max_result_bytes)]
+    pub max_result_bytes: u64,
     /// Time a light-curve request may take (waiting included), seconds.
     #[arg(long, env = "GLINT_REQUEST_TIMEOUT_SECS", default_value_t = 60.0)]
     pub request_timeout_secs: f64,
@@ -80,6 +84,7 @@ impl ServeArgs {
             ("max-job-epochs", self.max_job_epochs),
             ("max-running-jobs", self.max_running_jobs),
             ("max-queued-jobs", self.max_queued_jobs),
+            ("max-result-bytes", self.max_result_bytes as usize),
             (
                 "max-sync-triangle-epochs",
                 self.max_sync_triangle_epochs as usize,
@@ -108,6 +113,7 @@ impl ServeArgs {
                 max_queued: self.max_queued,
                 max_running_jobs: self.max_running_jobs,
                 max_queued_jobs: self.max_queued_jobs,
+                max_result_bytes: self.max_result_bytes,
                 request_timeout: secs("request-timeout-secs", self.request_timeout_secs)?,
             },
             result_ttl: secs("result-ttl-secs", self.result_ttl_secs)?,

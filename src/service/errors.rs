@@ -148,6 +148,29 @@ impl ApiError {
     }
 }
 
+impl From<super::store::StoreError> for ApiError {
+    /// A full disk is 507 and a disk that fails otherwise 503 (both clear up by themselves:
+    /// the store reopens once it can write again); anything else a 500.
+    fn from(e: super::store::StoreError) -> Self {
+        if e.is_full() {
+            Self::new(
+                StatusCode::INSUFFICIENT_STORAGE,
+                format!("the job store's disk is full ({e}); retry once space is freed"),
+            )
+        } else if e.is_io() || matches!(e, super::store::StoreError::Missing(_)) {
+            ApiError {
+                retry_after_s: Some(5),
+                ..Self::new(
+                    StatusCode::SERVICE_UNAVAILABLE,
+                    format!("the job store cannot read or write now ({e})"),
+                )
+            }
+        } else {
+            Self::internal(e)
+        }
+    }
+}
+
 impl From<ValidationError> for ApiError {
     fn from(e: ValidationError) -> Self {
         Self::from_validation(e)

@@ -225,7 +225,7 @@ impl Jobs {
                 };
                 if let Err(e) = me.store.insert(&rec, &body) {
                     me.table().remove(&id);
-                    return Err(ApiError::internal(e));
+                    return Err(ApiError::from(e));
                 }
                 Ok((status, false))
             })
@@ -279,6 +279,17 @@ impl Jobs {
     }
 
     fn room_in(&self, t: &HashMap<String, Entry>) -> Result<(), ApiError> {
+        let stored = self.store.result_bytes();
+        if stored >= self.limits.max_result_bytes {
+            return Err(ApiError::new(
+                axum::http::StatusCode::INSUFFICIENT_STORAGE,
+                format!(
+                    "stored results take {stored} bytes (limit {}): fetch and DELETE \
+                     finished jobs to make room",
+                    self.limits.max_result_bytes
+                ),
+            ));
+        }
         let unfinished = t.values().filter(|e| !e.rec.state.is_final()).count();
         if unfinished >= self.limits.max_queued_jobs {
             let mut e = ApiError::new(
@@ -377,7 +388,7 @@ impl Jobs {
         tokio::task::spawn_blocking(move || store.result(&key))
             .await
             .map_err(|e| ApiError::from_join("reading the result", e))?
-            .map_err(ApiError::internal)?
+            .map_err(ApiError::from)?
             // Removed by expiry between the two looks.
             .ok_or_else(|| no_such_job(id))
     }
@@ -414,7 +425,7 @@ impl Jobs {
         })
         .await
         .map_err(|e| ApiError::from_join("removing the job", e))?
-        .map_err(ApiError::internal)?;
+        .map_err(ApiError::from)?;
         Ok(match cancelled {
             Some(s) => Deleted::Cancelled(s),
             None => Deleted::Removed,

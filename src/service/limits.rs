@@ -30,6 +30,8 @@ pub struct ServiceLimits {
     pub max_running_jobs: usize,
     /// Jobs queued or running; beyond, a submission gets 429.
     pub max_queued_jobs: usize,
+    /// Bytes of finished jobs' results kept; at or beyond, a submission gets 507.
+    pub max_result_bytes: u64,
     /// Time a synchronous request may take, waiting included.
     pub request_timeout: Duration,
 }
@@ -53,6 +55,7 @@ impl Default for ServiceLimits {
             max_queued: 64,
             max_running_jobs: 1,
             max_queued_jobs: 1000,
+            max_result_bytes: 8 << 30,
             request_timeout: Duration::from_secs(60),
         }
     }

@@ -204,6 +204,8 @@ pub async fn post_lightcurve(
         (status = 415, description = "Content-Type is not application/json", body = ErrorBody),
         (status = 422, description = "A field has a wrong type or value, or the `Idempotency-Key` was used with another body; `field` names it", body = ErrorBody),
         (status = 429, description = "Too many jobs queued or running (see `Retry-After`)", body = ErrorBody),
+        (status = 503, description = "The job store cannot write now (see `Retry-After`)", body = ErrorBody),
+        (status = 507, description = "The job store's disk is full, or stored results are over their limit", body = ErrorBody),
     ),
     params(("Idempotency-Key" = Option<String>, Header,
         description = "A client's key for this submission (1–255 visible ASCII characters). \

@@ -313,6 +313,10 @@ pub fn evaluate(p: &Prepared, epoch: &Epoch, scratch: &mut Scratch) -> (EpochRes
             lit_visible_area_m2: lit_visible_area,
             eclipse: hidden,
             earth_blocks_view: blocked,
+            azimuth_deg: None,
+            elevation_deg: None,
+            sun_elevation_deg: None,
+            in_earth_shadow: None,
         },
         rays,
     )

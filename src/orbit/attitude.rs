@@ -272,7 +272,7 @@ fn rotate_about(i: usize, moments: &DVec3, l: &mut DVec3, q: &mut DQuat, tau: f6
     let (sh, ch) = (0.5 * phi).sin_cos();
     let mut v = DVec3::ZERO;
     v[i] = sh;
-    *q = *q * DQuat::from_xyzw(v.x, v.y, v.z, ch);
+    *q *= DQuat::from_xyzw(v.x, v.y, v.z, ch);
 }
 
 /// Strang's symmetric 2nd-order step: x(h/2) y(h/2) z(h) y(h/2) x(h/2).
@@ -331,11 +331,9 @@ pub fn symmetric_eigen(a: DMat3) -> (DVec3, DMat3) {
                 row[p] = c * x - s * y;
                 row[r] = s * x + c * y;
             }
-            for k in 0..3 {
-                let (x, y) = (m[p][k], m[r][k]);
-                m[p][k] = c * x - s * y;
-                m[r][k] = s * x + c * y;
-            }
+            let (mp, mr) = (m[p], m[r]);
+            m[p] = std::array::from_fn(|k| c * mp[k] - s * mr[k]);
+            m[r] = std::array::from_fn(|k| s * mp[k] + c * mr[k]);
             for row in v.iter_mut() {
                 let (x, y) = (row[p], row[r]);
                 row[p] = c * x - s * y;

@@ -44,7 +44,9 @@ pub fn to_csv(response: &Response) -> String {
                 opt(e.azimuth_deg),
                 opt(e.elevation_deg),
                 opt(e.sun_elevation_deg),
-                e.in_earth_shadow.map(|b| u8::from(b).to_string()).unwrap_or_default()
+                e.in_earth_shadow
+                    .map(|b| u8::from(b).to_string())
+                    .unwrap_or_default()
             );
         }
         s.push('\n');

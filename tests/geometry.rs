@@ -169,6 +169,18 @@ fn bad_geometry_names_the_field() {
         ),
         (
             with(
+                with(
+                    r.clone(),
+                    "geometry.attitude",
+                    json!({ "law": "tumble", "inertia_kg_m2": [1, 2, 2.5], "omega_deg_s": [30000, 0, 0] }),
+                ),
+                "geometry.times.stop",
+                json!("2026-12-10T00:00:00Z"),
+            ),
+            "geometry.attitude.omega_deg_s",
+        ),
+        (
+            with(
                 r.clone(),
                 "geometry.visible_only",
                 json!({ "min_elevation_deg": 89.9 }),

@@ -159,6 +159,16 @@ impl Tumble {
         }
     }
 
+    /// Integration steps a window of `span_s` seconds takes (0 in closed form).
+    pub fn steps_for(&self, span_s: f64) -> f64 {
+        if self.symmetry_axis().is_some() {
+            return 0.0;
+        }
+        let (l, _) = self.initial();
+        // moments validated positive
+        l.length() / self.moments.min_element() * span_s.abs() / MAX_STEP_ANGLE
+    }
+
     /// Principal-frame angular momentum and the principal → TEME attitude at the start.
     fn initial(&self) -> (DVec3, DQuat) {
         let w = self.axes.transpose() * self.omega0;

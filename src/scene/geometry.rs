@@ -21,6 +21,10 @@ pub const MAX_GEOMETRY_EPOCHS: usize = 10_000_000;
 /// by ~1–3 km a day in LEO, and beyond a month an element set says little.
 pub const MAX_DAYS_FROM_EPOCH: f64 = 30.0;
 
+/// Most integration steps a triaxial `tumble` may take over its window (~45 rotations
+/// each: about ten seconds of one core).
+pub const MAX_TUMBLE_STEPS: f64 = 5e7;
+
 /// The epochs, what the site sees at each, and warnings for the response.
 pub struct Built {
     pub epochs: Vec<Epoch>,
@@ -262,6 +266,17 @@ fn attitude(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, Vali
                         "principal moments {:?} kg·m² break the triangle inequality \
                          (I_a + I_b ≥ I_c): no rigid body has them",
                         m.to_array()
+                    ),
+                );
+            }
+            let steps = tumble.steps_for(stop.seconds_since(start));
+            if steps > MAX_TUMBLE_STEPS {
+                return err(
+                    f("omega_deg_s"),
+                    format!(
+                        "too large: this triaxial tumble over the window needs {steps:.2e} \
+                         integration steps (limit {MAX_TUMBLE_STEPS:e}); shorten the window \
+                         or slow the spin"
                     ),
                 );
             }

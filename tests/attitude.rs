@@ -249,3 +249,22 @@ fn tensor_and_principal_moments_agree() {
         assert!(d < 1e-9 * x.earth.unwrap().length(), "{d}");
     }
 }
+
+/// A `quaternions` series with ISO times through a request: halfway between two
+/// samples the body-frame Sun vector is the SLERP midpoint's (1e-12 rad: the series'
+/// times and the window's are the same instants).
+#[test]
+fn quaternion_series_with_iso_times() {
+    let q1 = DQuat::from_rotation_x(1.0);
+    let s = scene(&request(json!({ "law": "quaternions", "series": [
+        { "t": "2026-12-03T00:00:00Z", "q": [1, 0, 0, 0] },
+        { "t": 10800.0, "q": [q1.w, q1.x, q1.y, q1.z] } ] })));
+    let id = scene(&request(
+        json!({ "law": "inertial", "quaternion": [1, 0, 0, 0] }),
+    ));
+    // epoch k is at 37·k s; the window is 10800 s long
+    for (k, (a, b)) in id.epochs.iter().zip(&s.epochs).enumerate() {
+        let q = DQuat::from_rotation_x(37.0 * k as f64 / 10800.0);
+        assert!(angle(q.inverse() * a.sun, b.sun) < 1e-12, "{k}");
+    }
+}

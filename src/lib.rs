@@ -9,6 +9,7 @@ pub mod brdf;
 pub mod cli;
 pub mod geometry;
 pub mod integrate;
+pub mod orbit;
 pub mod radiometry;
 pub mod render;
 pub mod report;

@@ -247,3 +247,31 @@ fn unreadable_or_malformed_files_exit_non_zero() {
         .status
         .success());
 }
+
+/// `glint simulate` takes a `geometry` request as the service does: the CSV has the
+/// site's view after the usual columns, one row per epoch kept by `visible_only`.
+#[test]
+fn simulate_a_pass_from_a_tle() {
+    let out = tmp("iss-pass.csv");
+    let o = run(&[
+        "simulate",
+        "scenes/iss-pass.json",
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(&out).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(header.starts_with(&COLUMNS.join(",")));
+    assert!(header.ends_with("azimuth_deg,elevation_deg,sun_elevation_deg,in_earth_shadow"));
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert!(!rows.is_empty());
+    for row in rows {
+        let cells: Vec<&str> = row.split(',').collect();
+        assert_eq!(cells.len(), 16);
+        let el: f64 = cells[13].parse().unwrap();
+        let sun_el: f64 = cells[14].parse().unwrap();
+        assert!(el >= 10.0 && sun_el <= -6.0, "{row}");
+    }
+}

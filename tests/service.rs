@@ -893,3 +893,85 @@ fn stored_results_are_bounded_and_deleting_makes_room() {
     );
     assert_eq!(post_json(server.addr, "/v1/jobs", &req).status, 202);
 }
+
+/// A `geometry` request (TLE, site, window, attitude) through the service: 200 with the
+/// site's view per epoch; bad orbits, sites and quaternions 422 naming the field; a
+/// window over the synchronous epoch limit 413.
+#[test]
+fn geometry_requests_over_http() {
+    let server = Server::start("geometry", |c| {
+        c.limits.max_sync_epochs = 10;
+    });
+    let addr = server.addr;
+    let tle = [
+        "1 25544U 98067A   26336.50000000  .00016717  00000-0  30306-3 0  9992",
+        "2 25544  51.6400 200.0000 0005000  90.0000 270.0000 15.50000000 49995",
+    ];
+    let ok = serde_json::json!({
+        "object": { "mesh": { "builtin": "plate" }, "materials": [ { "name": "surface", "model": "lambert", "albedo": 0.5 } ] },
+        "geometry": {
+            "orbit": { "tle": tle },
+            "site": { "lat_deg": 32.78, "lon_deg": -105.82, "alt_m": 2790 },
+            "times": { "start": "2026-12-03T01:00:00Z", "stop": "2026-12-03T01:00:40Z", "step_s": 10 },
+            "attitude": { "law": "nadir" }
+        }
+    });
+    let r = post_json(addr, "/v1/lightcurves", &ok.to_string());
+    assert_eq!(r.status, 200, "{}", r.text());
+    let v = r.json();
+    assert_eq!(v["epochs"].as_array().unwrap().len(), 5);
+    assert!(v["epochs"][0]["elevation_deg"].as_f64().unwrap() > 10.0);
+    assert!(v["epochs"][0]["azimuth_deg"].is_number());
+    assert!(v["epochs"][0]["in_earth_shadow"].is_boolean());
+    assert!(v["warnings"].to_string().contains("earth_orientation"));
+
+    let bad = |path: &[&str], value: serde_json::Value| {
+        let mut v = ok.clone();
+        let mut at = &mut v;
+        for p in &path[..path.len() - 1] {
+            at = match p.parse::<usize>() {
+                Ok(i) => &mut at[i],
+                Err(_) => &mut at[*p],
+            };
+        }
+        let last = path[path.len() - 1];
+        match last.parse::<usize>() {
+            Ok(i) => at[i] = value,
+            Err(_) => at[last] = value,
+        }
+        post_json(addr, "/v1/lightcurves", &v.to_string())
+    };
+    // checksum: the last digit of line 2 changed
+    let wrong = tle[1].replace("49995", "49996");
+    assert_error(
+        &bad(&["geometry", "orbit", "tle", "1"], wrong.into()),
+        422,
+        Some("geometry.orbit.tle[1]"),
+    );
+    assert_error(
+        &bad(&["geometry", "site", "lat_deg"], 95.into()),
+        422,
+        Some("geometry.site.lat_deg"),
+    );
+    assert_error(
+        &bad(
+            &["geometry", "times", "start"],
+            "2026-11-01T00:00:00Z".into(),
+        ),
+        422,
+        Some("geometry.times.start"),
+    );
+    assert_error(
+        &bad(
+            &["geometry", "attitude"],
+            serde_json::json!({ "law": "inertial", "quaternion": [1, 1, 0, 0] }),
+        ),
+        422,
+        Some("geometry.attitude.quaternion"),
+    );
+    assert_error(
+        &bad(&["geometry", "times", "step_s"], 1.into()),
+        413,
+        Some("geometry.times"),
+    );
+}

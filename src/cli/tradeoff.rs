@@ -50,6 +50,7 @@ pub struct TradeoffArgs {
 fn every_nth(scene: &Scene, n: usize) -> Scene {
     Scene {
         epochs: scene.epochs.iter().step_by(n.max(1)).copied().collect(),
+        sky: scene.sky.iter().step_by(n.max(1)).copied().collect(),
         ..scene.clone()
     }
 }

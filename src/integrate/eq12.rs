@@ -322,6 +322,10 @@ pub fn evaluate(
             lit_visible_area_m2: lit_visible_area,
             eclipse: hidden,
             earth_blocks_view: blocked,
+            azimuth_deg: None,
+            elevation_deg: None,
+            sun_elevation_deg: None,
+            in_earth_shadow: None,
         },
         rays,
     )

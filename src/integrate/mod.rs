@@ -200,10 +200,19 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
     if progress.is_cancelled() {
         return Err(Cancelled);
     }
-    let epochs: Vec<EpochResult> = epochs
+    let mut epochs: Vec<EpochResult> = epochs
         .into_iter()
         .map(|e| e.ok_or(Cancelled))
         .collect::<Result<_, _>>()?;
+    // what the site sees, for epochs computed from a `geometry`
+    if scene.sky.len() == epochs.len() {
+        for (e, s) in epochs.iter_mut().zip(&scene.sky) {
+            e.azimuth_deg = Some(s.azimuth_deg);
+            e.elevation_deg = Some(s.elevation_deg);
+            e.sun_elevation_deg = Some(s.sun_elevation_deg);
+            e.in_earth_shadow = Some(e.eclipse > 0.0);
+        }
+    }
     // Images only when asked for: a light curve without them pays nothing.
     let thumbnails = match &scene.thumbnails {
         None => None,
@@ -213,7 +222,8 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
                 .ok_or(Cancelled)?,
         ),
     };
-    let (materials, warnings) = material_albedos(scene);
+    let (materials, mut warnings) = material_albedos(scene);
+    warnings.extend(scene.warnings.iter().cloned());
     Ok(Response {
         summary: Summary {
             epochs: epochs.len(),

@@ -6,14 +6,22 @@ use std::fmt::Write;
 /// Column names, in order.
 pub const HEADER: &str = "t,irradiance_w_m2,sun_w_m2,earthshine_w_m2,intensity_w_sr,magnitude,magnitude_std,phase_angle_deg,range_m,lit_visible_area_m2,eclipse,earth_blocks_view";
 
-/// CSV text with a header; an absent magnitude (no light) is an empty cell.
+/// Columns added after [`HEADER`] when the epochs came from a `geometry`.
+pub const GEOMETRY_HEADER: &str = ",azimuth_deg,elevation_deg,sun_elevation_deg,in_earth_shadow";
+
+/// CSV text with a header; an absent magnitude (no light) is an empty cell. A
+/// `geometry` request's curve has the site's view as four more columns.
 pub fn to_csv(response: &Response) -> String {
-    let mut s = String::with_capacity(64 + response.epochs.len() * 160);
+    let mut s = String::with_capacity(64 + response.epochs.len() * 200);
     s.push_str(HEADER);
+    let sky = response.epochs.iter().any(|e| e.azimuth_deg.is_some());
+    if sky {
+        s.push_str(GEOMETRY_HEADER);
+    }
     s.push('\n');
     let opt = |m: Option<f64>| m.map(|x| format!("{x:.6}")).unwrap_or_default();
     for e in &response.epochs {
-        let _ = writeln!(
+        let _ = write!(
             s,
             "{},{:e},{:e},{:e},{:e},{},{},{:.6},{:.6e},{:.6e},{:.6},{}",
             e.t,
@@ -29,6 +37,19 @@ pub fn to_csv(response: &Response) -> String {
             e.eclipse,
             u8::from(e.earth_blocks_view)
         );
+        if sky {
+            let _ = write!(
+                s,
+                ",{},{},{},{}",
+                opt(e.azimuth_deg),
+                opt(e.elevation_deg),
+                opt(e.sun_elevation_deg),
+                e.in_earth_shadow
+                    .map(|b| u8::from(b).to_string())
+                    .unwrap_or_default()
+            );
+        }
+        s.push('\n');
     }
     s
 }

@@ -1,6 +1,7 @@
 //! Requests and responses (the wire format, with OpenAPI schemas), their validation
 //! into a checked [`Scene`], and the material presets.
 
+pub mod geometry;
 pub mod presets;
 pub mod request;
 pub mod response;
@@ -40,6 +41,17 @@ pub struct Epoch {
     pub observer: DVec3,
     /// Vector object → Earth centre, m.
     pub earth: Option<DVec3>,
+}
+
+/// What a ground site sees of the object at one epoch of a `geometry` request.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sky {
+    /// Degrees from north through east.
+    pub azimuth_deg: f64,
+    /// Degrees above the site's horizon (geometric).
+    pub elevation_deg: f64,
+    /// The Sun's elevation at the site, degrees (geometric).
+    pub sun_elevation_deg: f64,
 }
 
 /// Earthshine model (docs/physics.md §5).
@@ -131,6 +143,11 @@ pub struct Scene {
     /// with rays to the tolerance (false; kept to chart and test the sampler, which is
     /// also the fallback for faces too finely cut by shadows to clip). Not in the request.
     pub clip_shadows: bool,
+    /// Per epoch, what the site sees, when the epochs came from `geometry` (empty
+    /// otherwise; ignored unless it has one entry per epoch).
+    pub sky: Vec<Sky>,
+    /// Notes for the response's `warnings` (e.g. Earth orientation taken as zero).
+    pub warnings: Vec<String>,
 }
 
 /// How rendered radiance maps to 8-bit grey levels.

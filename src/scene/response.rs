@@ -65,6 +65,21 @@ pub struct EpochResult {
     /// and the magnitudes `null` (`intensity_w_sr` is still the object's). `false` when the
     /// epoch gives no `earth`.
     pub earth_blocks_view: bool,
+    /// `geometry` requests only: the object's azimuth seen from the site, degrees from
+    /// north through east (geometric, no refraction).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub azimuth_deg: Option<f64>,
+    /// `geometry` requests only: the object's elevation above the site's horizon,
+    /// degrees (geometric, no refraction).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elevation_deg: Option<f64>,
+    /// `geometry` requests only: the Sun's elevation at the site, degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sun_elevation_deg: Option<f64>,
+    /// `geometry` requests only: the Earth hides some of the Sun from the object
+    /// (penumbra or umbra; `eclipse` says how much).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub in_earth_shadow: Option<bool>,
 }
 
 /// How the light curve was computed.

@@ -9,6 +9,7 @@ use super::{
 };
 use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet, Shadowing};
 use crate::geometry::{builtin, obj, Mesh};
+use crate::orbit::UtcTime;
 use crate::radiometry::{planck, AU_M, EARTH_RADIUS_M, SUN_RADIUS_M};
 use glam::{DQuat, DVec3};
 use std::fmt;
@@ -204,15 +205,23 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
     let mesh = mesh(&req.object.mesh, &materials, limits)?;
 
     let illumination = illumination(req)?;
-    if req.epochs.is_empty() {
+    let (epoch_specs, built) = match (&req.epochs, &req.geometry) {
+        (Some(_), Some(_)) => {
+            return err("geometry", "give either `epochs` or `geometry`, not both")
+        }
+        (None, None) => return err("epochs", "is required (or give `geometry`)"),
+        (Some(e), None) => (e.as_slice(), None),
+        (None, Some(g)) => (&[][..], Some(super::geometry::build(g, limits)?)),
+    };
+    if built.is_none() && epoch_specs.is_empty() {
         return err("epochs", "must list at least one epoch");
     }
-    if req.epochs.len() > limits.max_epochs {
+    if epoch_specs.len() > limits.max_epochs {
         return err(
             "epochs",
             format!(
                 "too many epochs: {} (limit {})",
-                req.epochs.len(),
+                epoch_specs.len(),
                 limits.max_epochs
             ),
         );
@@ -225,16 +234,35 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
     // Eq. 12 is a far-field sum (every face seen along one direction, at one range): an
     // observer inside the object's bounding sphere is no telescope
     let (centre, radius) = mesh.bounding_sphere();
-    let epochs = req
-        .epochs
-        .iter()
+    let (given, sky, warnings) = match built {
+        Some(b) => (Some(b.epochs), b.sky, b.warnings),
+        None => (None, Vec::new(), Vec::new()),
+    };
+    let from_specs = given.is_none();
+    let checked: Vec<Epoch> = match given {
+        Some(e) => e,
+        None => epoch_specs
+            .iter()
+            .enumerate()
+            .map(|(i, e)| epoch(&format!("epochs[{i}]"), e))
+            .collect::<Result<_, _>>()?,
+    };
+    // a geometry's epochs are named by their index in the computed list
+    let name = |i: usize| {
+        if from_specs {
+            format!("epochs[{i}]")
+        } else {
+            format!("geometry (epoch {i})")
+        }
+    };
+    let epochs = checked
+        .into_iter()
         .enumerate()
-        .map(|(i, e)| {
-            let ep = epoch(&format!("epochs[{i}]"), e)?;
+        .map(|(i, ep)| {
             let range = (ep.observer - centre).length();
             if range <= radius {
                 return err(
-                    format!("epochs[{i}].observer"),
+                    format!("{}.observer", name(i)),
                     format!(
                         "the observer is {range:.3e} m from the object's centre, within its \
                          bounding radius {radius:.3e} m: give the observer's position \
@@ -247,7 +275,7 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
                 && illumination.earthshine != EarthshineModel::Off
             {
                 return err(
-                    format!("epochs[{i}].earth"),
+                    format!("{}.earth", name(i)),
                     "is required when illumination.earthshine is not \"off\"",
                 );
             }
@@ -310,6 +338,8 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         centroid_subdivisions,
         thumbnails,
         clip_shadows: true,
+        sky,
+        warnings,
     })
 }
 
@@ -639,12 +669,16 @@ fn epoch(field: &str, e: &EpochSpec) -> Result<Epoch, ValidationError> {
 
 /// ISO 8601 / RFC 3339 UTC time → Unix seconds. A missing zone is taken as UTC.
 fn parse_time(s: &str) -> Result<f64, String> {
+    parse_utc(s).map(UtcTime::unix).map_err(|_| {
+        format!("`{s}` is neither seconds nor an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)")
+    })
+}
+
+/// ISO 8601 / RFC 3339 UTC time → an exact UTC instant. A missing zone is taken as UTC.
+pub fn parse_utc(s: &str) -> Result<UtcTime, String> {
     use chrono::{DateTime, NaiveDateTime};
-    let to_secs = |dt: DateTime<chrono::Utc>| {
-        dt.timestamp() as f64 + dt.timestamp_subsec_nanos() as f64 * 1e-9
-    };
     if let Ok(dt) = DateTime::parse_from_rfc3339(s) {
-        return Ok(to_secs(dt.with_timezone(&chrono::Utc)));
+        return Ok(UtcTime::from_datetime(&dt.with_timezone(&chrono::Utc)));
     }
     for fmt in [
         "%Y-%m-%dT%H:%M:%S%.f",
@@ -652,11 +686,11 @@ fn parse_time(s: &str) -> Result<f64, String> {
         "%Y-%m-%dT%H:%M",
     ] {
         if let Ok(n) = NaiveDateTime::parse_from_str(s, fmt) {
-            return Ok(to_secs(n.and_utc()));
+            return Ok(UtcTime::from_naive(&n));
         }
     }
     Err(format!(
-        "`{s}` is neither seconds nor an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)"
+        "`{s}` is not an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)"
     ))
 }
 

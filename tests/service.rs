@@ -975,3 +975,39 @@ fn geometry_requests_over_http() {
         Some("geometry.times"),
     );
 }
+
+#[test]
+fn a_silent_or_slow_connection_is_closed_after_the_header_timeout() {
+    use std::io::{Read, Write};
+    let server = Server::start("header-timeout", |c| {
+        c.limits.header_timeout = Duration::from_millis(300);
+    });
+    // How long until the server closes a connection that got `sent` and then nothing
+    // more (reading until EOF; an answer such as a 408 may come first).
+    let closed_after = |sent: &[u8]| {
+        let mut s = std::net::TcpStream::connect(server.addr).unwrap();
+        s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+        s.write_all(sent).unwrap();
+        let start = std::time::Instant::now();
+        let mut buf = Vec::new();
+        let _ = s.read_to_end(&mut buf);
+        (start.elapsed(), String::from_utf8_lossy(&buf).into_owned())
+    };
+    // nothing at all; half a request head; a whole request, then idle on keep-alive
+    let keep_alive = format!("GET /healthz HTTP/1.1\r\nHost: {}\r\n\r\n", server.addr);
+    for sent in [
+        &b""[..],
+        b"GET /healthz HTTP/1.1\r\nHost: x",
+        keep_alive.as_bytes(),
+    ] {
+        let (t, answer) = closed_after(sent);
+        // 300 ms timeout; the 5 s bound leaves room for a loaded machine, and is far
+        // below the tens of seconds a connection stayed open without a timer
+        assert!(t < Duration::from_secs(5), "open {t:?}: {answer}");
+        if sent == keep_alive.as_bytes() {
+            assert!(answer.starts_with("HTTP/1.1 200"), "{answer}");
+        }
+    }
+    // a request sent in time is answered as usual
+    assert_eq!(get(server.addr, "/healthz").status, 200);
+}

@@ -62,6 +62,10 @@ pub struct ServeArgs {
     /// Time a light-curve request may take (waiting included), seconds.
     #[arg(long, env = "GLINT_REQUEST_TIMEOUT_SECS", default_value_t = 60.0)]
     pub request_timeout_secs: f64,
+    /// Time a connection may take to send a request's head, or stay silent between
+    /// requests, before it is closed, seconds.
+    #[arg(long, env = "GLINT_HEADER_TIMEOUT_SECS", default_value_t = 10.0)]
+    pub header_timeout_secs: f64,
     /// How long finished jobs and their results are kept, seconds (default 7 days).
     #[arg(long, env = "GLINT_RESULT_TTL_SECS", default_value_t = 7.0 * 86400.0)]
     pub result_ttl_secs: f64,
@@ -115,6 +119,7 @@ impl ServeArgs {
                 max_queued_jobs: self.max_queued_jobs,
                 max_result_bytes: self.max_result_bytes,
                 request_timeout: secs("request-timeout-secs", self.request_timeout_secs)?,
+                header_timeout: secs("header-timeout-secs", self.header_timeout_secs)?,
             },
             result_ttl: secs("result-ttl-secs", self.result_ttl_secs)?,
             engine: crate::simulate_with,

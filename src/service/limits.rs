@@ -34,6 +34,9 @@ pub struct ServiceLimits {
     pub max_result_bytes: u64,
     /// Time a synchronous request may take, waiting included.
     pub request_timeout: Duration,
+    /// Time a connection may take to send a request's head, or stay silent between
+    /// requests, before it is closed.
+    pub header_timeout: Duration,
 }
 
 impl Default for ServiceLimits {
@@ -57,6 +60,7 @@ impl Default for ServiceLimits {
             max_queued_jobs: 1000,
             max_result_bytes: 8 << 30,
             request_timeout: Duration::from_secs(60),
+            header_timeout: Duration::from_secs(10),
         }
     }
 }

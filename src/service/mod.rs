@@ -18,6 +18,7 @@ pub mod record;
 pub mod request_id;
 pub mod routes;
 pub mod scenes;
+pub mod server;
 pub mod store;
 pub mod threads;
 
@@ -245,13 +246,13 @@ pub async fn start(config: Config) -> anyhow::Result<Running> {
         })?;
     let addr = listener.local_addr()?;
     let (router, state) = build(&config)?;
+    let header_timeout = config.limits.header_timeout;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let task = tokio::spawn(async move {
-        axum::serve(listener, router)
-            .with_graceful_shutdown(async move {
-                let _ = stopped.await;
-            })
-            .await
+        server::serve(listener, router, header_timeout, async move {
+            let _ = stopped.await;
+        })
+        .await
     });
     Ok(Running {
         addr,

@@ -746,6 +746,26 @@ pub fn fit(samples: &[Sample], opts: &Options) -> Result<BrdfFit, ValidationErro
         })
         .expect("at least one start")
         .clone();
+    // polish: restart from the best minimum (a fresh trust region) while that lowers
+    // the objective; a flat valley (n, k against k^M) can stop a run short
+    let mut best = best;
+    for _ in 0..4 {
+        let again = solve::solve(&problem, &bounds, &best.p, &settings);
+        evaluations += again.evaluations;
+        let (old, new) = (
+            solve::objective(opts.loss, &best.residuals, scale),
+            solve::objective(opts.loss, &again.residuals, scale),
+        );
+        if new < old {
+            let gain = (old - new) / old.max(1e-300);
+            best = again;
+            if gain < 1e-3 {
+                break;
+            }
+        } else {
+            break;
+        }
+    }
     let cov = solve::covariance(&problem, &bounds, &best);
     evaluations += cov.evaluations;
     problem.base = problem.full(&best.p);
@@ -861,6 +881,7 @@ pub fn fit(samples: &[Sample], opts: &Options) -> Result<BrdfFit, ValidationErro
             algorithm: "levenberg-marquardt".into(),
             loss: opts.loss.name().into(),
             starts: starts.len(),
+            start_rms: solutions.iter().map(|s| rms_of(&s.residuals)).collect(),
             evaluations,
             converged: best.converged,
             termination: best.termination.clone(),
@@ -868,6 +889,10 @@ pub fn fit(samples: &[Sample], opts: &Options) -> Result<BrdfFit, ValidationErro
         },
         plot_svg: None,
     })
+}
+
+fn rms_of(r: &[f64]) -> f64 {
+    (r.iter().map(|x| x * x).sum::<f64>() / r.len().max(1) as f64).sqrt()
 }
 
 fn free_complement(specs: &[ParamSpec], fixed: &[Option<f64>]) -> Named {

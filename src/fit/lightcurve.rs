@@ -671,6 +671,7 @@ pub fn fit(
             algorithm: "levenberg-marquardt".into(),
             loss: opts.loss.name().into(),
             starts: 1,
+            start_rms: vec![(chi2 / n as f64).sqrt()],
             evaluations: problem.evaluations.get(),
             converged: sol.converged,
             termination: sol.termination,

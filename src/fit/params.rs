@@ -97,6 +97,9 @@ pub struct SolverReport {
     pub loss: String,
     /// Starts tried; the reported fit is the best of them.
     pub starts: usize,
+    /// RMS of the fit-space residuals each start ended with (in start order): more than
+    /// one distinct value means several minima.
+    pub start_rms: Vec<f64>,
     /// Model evaluations over all starts, Jacobians included.
     pub evaluations: usize,
     /// Whether the best start's last solve met its tolerances.

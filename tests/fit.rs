@@ -300,7 +300,8 @@ fn a_robust_loss_shrugs_off_outliers_that_pull_least_squares_away() {
 fn every_model_fits_its_own_samples() {
     // Each model's noise-free samples come back to 1e-3 relative (indices held, as the
     // samples barely determine them): lambert, rough-conductor, ashikhmin-shirley.
-    let cases: [(Model, Vec<f64>, Vec<(&str, f64)>); 3] = [
+    type Case = (Model, Vec<f64>, Vec<(&'static str, f64)>);
+    let cases: [Case; 3] = [
         (Model::Lambert, vec![0.35], vec![]),
         (
             Model::RoughConductor,

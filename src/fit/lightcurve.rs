@@ -462,8 +462,8 @@ pub fn fit(
             ));
         };
         let mfield = format!("object.materials[{index}]");
-        if !materials.contains_key(&index) {
-            materials.insert(index, expanded(&specs[index], &mfield)?);
+        if let std::collections::btree_map::Entry::Vacant(slot) = materials.entry(index) {
+            slot.insert(expanded(&specs[index], &mfield)?);
         }
         let m = &materials[&index];
         let model = m.model.clone().unwrap_or_default();

@@ -63,15 +63,14 @@ impl Bound {
         p >= self.lo && p <= self.hi
     }
 
-    /// Whether `p` is within a millionth of the range (or of |p|) of a finite bound: the
+    /// Whether `p` is within a millionth of the range of a finite bound: the
     /// fit ran into it, and its uncertainty is a one-sided matter.
     pub fn at_bound(self, p: f64) -> bool {
-        let w = if self.lo.is_finite() && self.hi.is_finite() {
-            self.hi - self.lo
+        let tol = if self.lo.is_finite() && self.hi.is_finite() {
+            1e-6 * (self.hi - self.lo)
         } else {
-            p.abs().max(1.0)
+            1e-9 * p.abs().max(1.0)
         };
-        let tol = 1e-6 * w.min(p.abs().max(1e-9) * 1e3);
         (self.lo.is_finite() && p - self.lo <= tol) || (self.hi.is_finite() && self.hi - p <= tol)
     }
 

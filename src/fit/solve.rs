@@ -415,7 +415,7 @@ pub fn covariance<R: Residuals>(model: &R, bounds: &[Bound], sol: &Solution) -> 
     let svd = j.svd(false, true);
     let Some(vt) = svd.v_t else { return none() };
     let smax = svd.singular_values.iter().copied().fold(0.0, f64::max);
-    if !(smax > 0.0) {
+    if smax <= 0.0 || smax.is_nan() {
         return none();
     }
     let mut cov = DMatrix::zeros(n, n);

@@ -53,7 +53,7 @@ where
         .filter(|v| v.is_finite())
         .fold(0.0f64, f64::max);
     let low = measured.filter(|&v| v > 0.0).fold(f64::INFINITY, f64::min);
-    if !(top > 0.0) {
+    if top <= 0.0 || top.is_nan() {
         return Err("nothing positive to plot".into());
     }
     // six decades at most below the top, and below the smallest sample

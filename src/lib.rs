@@ -7,6 +7,7 @@
 
 pub mod brdf;
 pub mod cli;
+pub mod fit;
 pub mod geometry;
 pub mod integrate;
 pub mod orbit;

@@ -1011,3 +1011,62 @@ fn a_silent_or_slow_connection_is_closed_after_the_header_timeout() {
     // a request sent in time is answered as usual
     assert_eq!(get(server.addr, "/healthz").status, 200);
 }
+#[test]
+fn brdf_fit_endpoint_gives_the_library_result_and_names_bad_fields() {
+    // The endpoint adds nothing: its parameters are the library's on the same samples.
+    use glint::fit::brdf;
+    let server = Server::start("sync", |_| {});
+    let truth = brdf::Model::Lambert.build(&[0.4]);
+    let samples = brdf::synthetic(&truth, &brdf::paper_geometry(), 0.03, 4);
+    let body = serde_json::json!({ "model": "lambert", "samples": samples, "plot": true });
+    let r = post_json(server.addr, "/v1/fits/brdf", &body.to_string());
+    assert_eq!(r.status, 200, "{}", r.text());
+    let v = r.json();
+    let opts = brdf::Options {
+        model: brdf::Model::Lambert,
+        fixed: Default::default(),
+        loss: glint::fit::solve::Loss::Huber,
+        space: brdf::Space::Log,
+    };
+    let direct = brdf::fit(&samples, &opts).unwrap();
+    assert_eq!(
+        v["parameters"]["albedo"].as_f64(),
+        Some(direct.parameters["albedo"])
+    );
+    assert!(v["uncertainty"]["albedo"].as_f64().unwrap() > 0.0, "{v}");
+    assert!(v["plot_svg"].as_str().unwrap().starts_with("<svg"));
+
+    // bad input: 422 with the field
+    let mut bad = body.clone();
+    bad["samples"][3]["theta_i_deg"] = serde_json::json!(95.0);
+    let r = post_json(server.addr, "/v1/fits/brdf", &bad.to_string());
+    assert_error(&r, 422, Some("samples[3].theta_i_deg"));
+    let mut bad = body.clone();
+    bad["model"] = serde_json::json!("phong");
+    assert_error(
+        &post_json(server.addr, "/v1/fits/brdf", &bad.to_string()),
+        422,
+        Some("model"),
+    );
+    let mut bad = body.clone();
+    bad["fixed"] = serde_json::json!({ "km": 0.1 });
+    assert_error(
+        &post_json(server.addr, "/v1/fits/brdf", &bad.to_string()),
+        422,
+        Some("fixed.km"),
+    );
+    let mut bad = body.clone();
+    bad["samples"] = serde_json::json!([samples[0]]);
+    assert_error(
+        &post_json(server.addr, "/v1/fits/brdf", &bad.to_string()),
+        422,
+        Some("samples"),
+    );
+    let mut bad = body.clone();
+    bad["samples"][1]["brdf"] = serde_json::json!(1.0);
+    assert_error(
+        &post_json(server.addr, "/v1/fits/brdf", &bad.to_string()),
+        422,
+        Some("samples[1].brdf"),
+    );
+}

@@ -18,6 +18,12 @@ impl Fresnel {
         Fresnel { eta2: eta * eta }
     }
 
+    /// The index (n, k) back from η²: the principal square root, n ≥ 0 (as requests give it).
+    pub fn index(&self) -> (f64, f64) {
+        let eta = self.eta2.sqrt();
+        (eta.re.abs(), eta.im.abs())
+    }
+
     /// Reflectance F = (Rs + Rp)/2 at incidence cosine `cos_b` (clamped to 0..1).
     #[inline]
     pub fn reflectance(&self, cos_b: f64) -> f64 {

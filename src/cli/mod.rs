@@ -1,5 +1,6 @@
 //! The command line: argument parsing and the subcommands. No physics here.
 
+pub mod fit;
 pub mod serve;
 pub mod simulate;
 pub mod tradeoff;
@@ -22,6 +23,12 @@ pub enum Command {
     /// Run every method over a range of its fidelity setting; chart error against time per
     /// epoch (SVG + PNG) and print the table.
     Tradeoff(tradeoff::TradeoffArgs),
+    /// Fit a material model's parameters to measured BRDF samples (CSV).
+    FitBrdf(fit::FitBrdfArgs),
+    /// Write synthetic BRDF samples of a model (the paper's Fig. 2 geometry) as CSV.
+    SampleBrdf(fit::SampleBrdfArgs),
+    /// Fit a request's free parameters (materials, yaw) to an observed light curve.
+    FitLightcurve(fit::FitLightcurveArgs),
     /// Write the built-in objects as OBJ files (they are kept in scenes/objects).
     ExportObjects {
         /// Directory to write into.
@@ -67,6 +74,9 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Some(Command::Simulate(args)) => simulate::run(&args),
         Some(Command::Tradeoff(args)) => tradeoff::run(&args),
+        Some(Command::FitBrdf(args)) => fit::run_brdf(&args),
+        Some(Command::FitLightcurve(args)) => fit::run_lightcurve(&args),
+        Some(Command::SampleBrdf(args)) => fit::run_sample(&args),
         Some(Command::ExportObjects { dir, detail }) => export_objects(&dir, detail.as_deref()),
         Some(Command::Serve(args)) => serve::run(&args),
         Some(Command::Openapi) => serve::print_openapi(),

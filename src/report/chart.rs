@@ -180,6 +180,28 @@ pub fn png(title: &str, lines: &[Line]) -> Result<Vec<u8>, String> {
 
 use image::ImageEncoder;
 
+/// Any chart as PNG bytes, `size` pixels: `draw` is called with a canvas of twice that
+/// size and the scale 2 (lengths and fonts are to be multiplied by it), and the result
+/// averaged down, as [`png`] does for the trade-off chart.
+pub(crate) fn png_with(
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<&mut Canvas, Shift>, u32) -> Result<(), String>,
+) -> Result<Vec<u8>, String> {
+    let font = load_font()?;
+    let k = 2;
+    let mut canvas = Canvas::new(size.0 * k, size.1 * k, font);
+    {
+        let root = (&mut canvas).into_drawing_area();
+        draw(&root, k)?;
+    }
+    let small = canvas.downsample(k);
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(&small, size.0, size.1, image::ExtendedColorType::Rgb8)
+        .map_err(|e| e.to_string())?;
+    Ok(bytes)
+}
+
 /// Where to look for a TrueType font (Debian/Ubuntu `fonts-dejavu-core`, Fedora, Arch,
 /// macOS), after `GLINT_FONT`.
 const FONT_PATHS: &[&str] = &[
@@ -211,7 +233,7 @@ fn load_font() -> Result<FontVec, String> {
 }
 
 /// An RGB image that plotters draws into; text through ab_glyph.
-struct Canvas {
+pub(crate) struct Canvas {
     w: u32,
     h: u32,
     rgb: Vec<f32>,

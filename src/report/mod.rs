@@ -2,4 +2,5 @@
 
 pub mod chart;
 pub mod csv;
+pub mod fit_plot;
 pub mod plot;

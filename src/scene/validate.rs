@@ -132,6 +132,44 @@ pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
     Ok(request)
 }
 
+/// Parses any JSON body type with the same field-naming errors as [`parse_request`]
+/// (e.g. `samples[3].phi_deg: invalid type: string "x", expected f64`).
+pub fn parse_json<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, ValidationError> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let value: T = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
+        let mut field = e.path().to_string();
+        if field == "." {
+            field.clear();
+        }
+        let inner = e.into_inner();
+        let message = inner.to_string();
+        if let Some(rest) = message.strip_prefix("unknown field `") {
+            if let Some(name) = rest.split('`').next() {
+                if !(field == name || field.ends_with(&format!(".{name}"))) {
+                    field = if field.is_empty() {
+                        name.to_string()
+                    } else {
+                        format!("{field}.{name}")
+                    };
+                }
+            }
+        }
+        let message = if inner.is_syntax() || inner.is_eof() {
+            format!("invalid JSON: {message}")
+        } else {
+            match message.rfind(" at line ") {
+                Some(i) => message[..i].to_string(),
+                None => message,
+            }
+        };
+        ValidationError { field, message }
+    })?;
+    de.end().map_err(|e| {
+        ValidationError::new("", format!("invalid JSON: data after the body ({e})"))
+    })?;
+    Ok(value)
+}
+
 fn err<T>(field: impl Into<String>, message: impl Into<String>) -> Result<T, ValidationError> {
     Err(ValidationError::new(field, message))
 }
@@ -694,7 +732,9 @@ pub fn parse_utc(s: &str) -> Result<UtcTime, String> {
     ))
 }
 
-fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationError> {
+/// One material of a request, checked (`field` is its path, e.g. `object.materials[1]`);
+/// the light-curve fit re-validates a material whose parameter it changed.
+pub(crate) fn material(field: &str, spec: &MaterialSpec) -> Result<Material, ValidationError> {
     let preset = |name: &str, f: &str| {
         presets::find(name).ok_or_else(|| {
             ValidationError::new(

@@ -98,6 +98,7 @@ pub struct AppState {
 pub fn api_router() -> OpenApiRouter<AppState> {
     OpenApiRouter::with_openapi(openapi::ApiDoc::openapi())
         .routes(routes!(routes::post_lightcurve))
+        .routes(routes!(routes::post_brdf_fit))
         .routes(routes!(routes::post_job, routes::list_jobs))
         .routes(routes!(routes::get_job, routes::delete_job))
         .routes(routes!(routes::get_job_result))

@@ -6,6 +6,7 @@ use super::jobs::{no_such_job, Deleted, JobState, JobStatus};
 use super::metrics::Gauges;
 use super::scenes::{self, SceneSummary};
 use super::AppState;
+use crate::fit::brdf::{self as fit_brdf, BrdfFit, BrdfFitRequest};
 use crate::integrate::Progress;
 use crate::report::csv::to_csv;
 use crate::scene::{validate, Request, Response, Scene};
@@ -184,6 +185,80 @@ pub async fn post_lightcurve(
     })??;
     st.metrics.add_epochs("sync", n as u64);
     Ok(body_response(bytes, csv))
+}
+
+/// An example body of `POST /v1/fits/brdf`: a few samples of a glossy paint.
+pub fn example_brdf_fit() -> serde_json::Value {
+    serde_json::json!({
+        "model": "lambert",
+        "samples": [
+            { "theta_i_deg": 30.0, "theta_r_deg": 0.0, "phi_deg": 180.0, "brdf_sr": 0.16 },
+            { "theta_i_deg": 30.0, "theta_r_deg": 30.0, "phi_deg": 180.0, "brdf_sr": 0.15 },
+            { "theta_i_deg": 30.0, "theta_r_deg": 60.0, "phi_deg": 0.0, "brdf_sr": 0.17 }
+        ]
+    })
+}
+
+/// Fit a material model to measured BRDF samples.
+///
+/// What `glint fit-brdf` does with a CSV file: bounded, robust (Huber by default)
+/// Levenberg–Marquardt from several starts; the parameters come back under the names a
+/// request's material takes, with 1σ uncertainties from the Jacobian at the optimum.
+#[utoipa::path(
+    post, path = "/v1/fits/brdf", tag = "fits",
+    request_body(content = BrdfFitRequest, content_type = "application/json",
+        example = json!(example_brdf_fit())),
+    responses(
+        (status = 200, description = "The fitted parameters", body = BrdfFit),
+        (status = 400, description = "Malformed JSON or body", body = ErrorBody),
+        (status = 401, description = "Missing or wrong bearer token", body = ErrorBody),
+        (status = 413, description = "Body over the size limit", body = ErrorBody),
+        (status = 415, description = "Content-Type is not application/json", body = ErrorBody),
+        (status = 422, description = "A bad sample, model or option; `field` names it (e.g. `samples[3].phi_deg`)", body = ErrorBody),
+        (status = 503, description = "Busy (see `Retry-After`), or over the request timeout", body = ErrorBody),
+    )
+)]
+pub async fn post_brdf_fit(
+    State(st): State<AppState>,
+    JsonBody(body): JsonBody,
+) -> Result<Json<BrdfFit>, ApiError> {
+    let timeout = st.limits.request_timeout;
+    let work = async {
+        let slot = st.slots.acquire().await.map_err(|_| ApiError::busy(1))?;
+        let pool = st.pools.sync.clone();
+        tokio::task::spawn_blocking(move || -> Result<BrdfFit, ApiError> {
+            let _slot = slot;
+            let text = std::str::from_utf8(&body)
+                .map_err(|e| ApiError::bad_request(format!("request body is not UTF-8: {e}")))?;
+            let req: BrdfFitRequest = validate::parse_json(text)?;
+            let opts = fit_brdf::Options::from_request(&req)?;
+            let mut result = pool.install(|| fit_brdf::fit(&req.samples, &opts))?;
+            if req.plot == Some(true) {
+                let brdf = result
+                    .brdf()
+                    .ok_or_else(|| ApiError::internal("fitted parameters"))?;
+                let groups = fit_brdf::plot_data(&req.samples, &brdf);
+                let title = format!("{} fit", result.model);
+                result.plot_svg = Some(
+                    crate::report::fit_plot::brdf_svg(&title, &groups)
+                        .map_err(ApiError::internal)?,
+                );
+            }
+            Ok(result)
+        })
+        .await
+        .map_err(ApiError::internal)?
+    };
+    let result = tokio::time::timeout(timeout, work).await.map_err(|_| {
+        ApiError::new(
+            StatusCode::SERVICE_UNAVAILABLE,
+            format!(
+                "the fit took longer than the request timeout ({} s)",
+                timeout.as_secs_f64()
+            ),
+        )
+    })??;
+    Ok(Json(result))
 }
 
 /// Submit a batch job.

@@ -1,0 +1,354 @@
+//! `glint fit-brdf` and `glint fit-lightcurve`: files in, [`crate::fit`] does the work,
+//! a summary out (and the JSON result and a plot when asked).
+
+use crate::fit::{brdf, lightcurve, solve::Loss};
+use crate::report::fit_plot;
+use crate::scene::validate;
+use anyhow::Context;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+#[derive(Debug, clap::Args)]
+pub struct FitBrdfArgs {
+    /// Samples CSV: header `theta_i_deg,theta_r_deg,phi_deg,brdf_sr` (degrees, sr⁻¹; φ = 180
+    /// the forward side of the plane of incidence), optional `weight`, `wavelength_um`.
+    pub samples: PathBuf,
+    /// seed-microfacet, rough-conductor, ashikhmin-shirley or lambert.
+    #[arg(long)]
+    pub model: String,
+    /// Write the result as JSON.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Write the plot (measured points, model curves per incidence): `*.png` as PNG,
+    /// anything else SVG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Hold parameters fixed: `n=0.18,k=3.6`.
+    #[arg(long, value_name = "NAME=VALUE,...")]
+    pub fix: Option<String>,
+    /// huber (default), cauchy or l2.
+    #[arg(long, default_value = "huber")]
+    pub loss: String,
+    /// Residual space: log (default) or linear.
+    #[arg(long, default_value = "log")]
+    pub space: String,
+}
+
+#[derive(Debug, clap::Args)]
+pub struct SampleBrdfArgs {
+    /// seed-microfacet, rough-conductor, ashikhmin-shirley or lambert.
+    #[arg(long)]
+    pub model: String,
+    /// Every parameter of the model: `kd=0.1,km=0.2,slope_rms=0.007,n=0.2,k=2.5`.
+    #[arg(long, value_name = "NAME=VALUE,...")]
+    pub params: String,
+    /// Relative (log-normal) noise σ: each value times e^{σ·N(0,1)}.
+    #[arg(long, default_value_t = 0.0)]
+    pub noise: f64,
+    /// Seed of the noise.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// The CSV to write (`fit-brdf` reads it).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// `glint sample-brdf`: synthetic samples of a model at the paper's Fig. 2 geometry.
+pub fn run_sample(args: &SampleBrdfArgs) -> anyhow::Result<()> {
+    let model = brdf::Model::parse(&args.model).ok_or_else(|| {
+        anyhow::anyhow!(
+            "--model: unknown model `{}`; expected {}",
+            args.model,
+            brdf::Model::NAMES
+        )
+    })?;
+    let given = assignments("--params", &args.params)?;
+    let mut p = Vec::new();
+    for spec in model.params() {
+        let v = *given.get(spec.name).ok_or_else(|| {
+            anyhow::anyhow!(
+                "--params: `{}` is required by model `{}`",
+                spec.name,
+                model.name()
+            )
+        })?;
+        if !v.is_finite() || !spec.bound.contains(v) {
+            anyhow::bail!(
+                "--params {}: {v} is out of range {}",
+                spec.name,
+                spec.bound.describe()
+            );
+        }
+        p.push(v);
+    }
+    for name in given.keys() {
+        if !model.params().iter().any(|s| s.name == name) {
+            anyhow::bail!(
+                "--params {name}: not a parameter of model `{}`",
+                model.name()
+            );
+        }
+    }
+    if !(args.noise.is_finite() && args.noise >= 0.0) {
+        anyhow::bail!("--noise: must be a finite number >= 0");
+    }
+    let samples = brdf::synthetic(
+        &model.build(&p),
+        &brdf::paper_geometry(),
+        args.noise,
+        args.seed,
+    );
+    let comment = format!(
+        "SYNTHETIC samples, not a measurement: `glint sample-brdf --model {} --params {} --noise {} --seed {}`\n\
+         (the paper's Fig. 2 geometry: incidence 10, 30, 45, 60 degrees; phi = 180 is the forward side)",
+        model.name(),
+        args.params,
+        args.noise,
+        args.seed
+    );
+    std::fs::write(&args.out, brdf::to_csv(&samples, &comment))
+        .with_context(|| format!("cannot write {}", args.out.display()))?;
+    println!("{} samples: {}", samples.len(), args.out.display());
+    Ok(())
+}
+
+#[derive(Debug, clap::Args)]
+pub struct FitLightcurveArgs {
+    /// The request (JSON): shape, materials and the epochs' geometry.
+    pub request: PathBuf,
+    /// Observed magnitudes, CSV: `t` (an epoch's t), `magnitude` and `sigma` columns.
+    #[arg(long)]
+    pub observed: PathBuf,
+    /// Free parameters: `materials.panel.albedo,materials.body.slope_rms,attitude.yaw_deg`.
+    #[arg(long)]
+    pub free: String,
+    /// Starting values: `materials.panel.albedo=0.3,attitude.yaw_deg=10` (default: the
+    /// request's values, yaw 0).
+    #[arg(long)]
+    pub start: Option<String>,
+    /// σ (mag) for every row when the CSV has no error column.
+    #[arg(long)]
+    pub sigma: Option<f64>,
+    /// l2 (default: weighted least squares), huber or cauchy.
+    #[arg(long, default_value = "l2")]
+    pub loss: String,
+    /// Write the result as JSON.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Write the plot (observed, fitted, residuals): `*.png` as PNG, anything else SVG.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
+/// `name=value,name=value` → map; errors name the option and the item.
+fn assignments(option: &str, text: &str) -> anyhow::Result<BTreeMap<String, f64>> {
+    let mut out = BTreeMap::new();
+    for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let (name, value) = item
+            .split_once('=')
+            .ok_or_else(|| anyhow::anyhow!("{option}: `{item}` is not NAME=VALUE"))?;
+        let v: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| anyhow::anyhow!("{option}: `{value}` is not a number (in `{item}`)"))?;
+        out.insert(name.trim().to_string(), v);
+    }
+    Ok(out)
+}
+
+fn is_png(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+}
+
+pub fn run_brdf(args: &FitBrdfArgs) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(&args.samples)
+        .with_context(|| format!("cannot read {}", args.samples.display()))?;
+    let samples = brdf::parse_csv(&text)
+        .map_err(|e| anyhow::anyhow!("invalid samples {}: {e}", args.samples.display()))?;
+    let request = brdf::BrdfFitRequest {
+        model: args.model.clone(),
+        samples: Vec::new(),
+        fixed: args
+            .fix
+            .as_deref()
+            .map(|f| assignments("--fix", f))
+            .transpose()?,
+        loss: Some(args.loss.clone()),
+        space: Some(args.space.clone()),
+        plot: None,
+    };
+    let opts = brdf::Options::from_request(&request).map_err(|e| {
+        anyhow::anyhow!(
+            "--{}: {}",
+            e.field
+                .split('.')
+                .next()
+                .unwrap_or("")
+                .replace("fixed", "fix"),
+            e.message
+        )
+    })?;
+    let result = brdf::fit(&samples, &opts).map_err(|e| match e.field.strip_prefix("fixed.") {
+        Some(name) => anyhow::anyhow!("--fix {name}: {}", e.message),
+        None => anyhow::anyhow!("{e}"),
+    })?;
+    println!(
+        "{} fitted to {} samples ({} starts, {} evaluations, {:.2} s, loss {}, {} space)",
+        result.model,
+        result.samples,
+        result.solver.starts,
+        result.solver.evaluations,
+        result.solver.wall_time_s,
+        result.solver.loss,
+        result.space
+    );
+    for (name, value) in &result.parameters {
+        match (
+            result.uncertainty.get(name),
+            result.fixed.contains_key(name),
+        ) {
+            (_, true) => println!("  {name:<10} {value:.6} (fixed)"),
+            (Some(Some(s)), _) => println!("  {name:<10} {value:.6} ± {s:.2e}"),
+            _ => println!("  {name:<10} {value:.6} ± (undetermined)"),
+        }
+    }
+    println!(
+        "  rms {:.4e} sr⁻¹, rms_log {}, albedo (normal incidence) {:.3}",
+        result.rms,
+        result.rms_log.map_or("-".into(), |r| format!("{r:.4}")),
+        result.albedo
+    );
+    for w in &result.warnings {
+        println!("warning: {w}");
+    }
+    if let Some(out) = &args.out {
+        std::fs::write(out, serde_json::to_string_pretty(&result)? + "\n")
+            .with_context(|| format!("cannot write {}", out.display()))?;
+        println!("result: {}", out.display());
+    }
+    if let Some(plot) = &args.plot {
+        let brdf = result.brdf().context("fitted parameters")?;
+        let groups = brdf::plot_data(&samples, &brdf);
+        let title = format!("{} fitted to {}", result.model, file_name(&args.samples));
+        write_plot(
+            plot,
+            || fit_plot::brdf_svg(&title, &groups),
+            || fit_plot::brdf_png(&title, &groups),
+        )?;
+    }
+    Ok(())
+}
+
+pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(&args.request)
+        .with_context(|| format!("cannot read {}", args.request.display()))?;
+    let request = validate::parse_request(&text)
+        .map_err(|e| anyhow::anyhow!("invalid request {}: {e}", args.request.display()))?;
+    let observed_text = std::fs::read_to_string(&args.observed)
+        .with_context(|| format!("cannot read {}", args.observed.display()))?;
+    let observed = lightcurve::parse_observed_csv(&observed_text, args.sigma)
+        .map_err(|e| anyhow::anyhow!("invalid observations {}: {e}", args.observed.display()))?;
+    let free: Vec<String> = args
+        .free
+        .split(',')
+        .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
+        .collect();
+    let loss = Loss::parse(&args.loss).ok_or_else(|| {
+        anyhow::anyhow!("--loss: expected l2, huber or cauchy, got `{}`", args.loss)
+    })?;
+    let opts = lightcurve::Options {
+        free: free.clone(),
+        start: args
+            .start
+            .as_deref()
+            .map(|s| assignments("--start", s))
+            .transpose()?
+            .unwrap_or_default(),
+        loss,
+    };
+    let result = lightcurve::fit(&request, &observed, &opts).map_err(|e| {
+        if let Some(i) = e
+            .field
+            .strip_prefix("free[")
+            .and_then(|r| r.strip_suffix(']'))
+        {
+            anyhow::anyhow!(
+                "--free (item {}): {}",
+                i.parse::<usize>().map_or(0, |i| i + 1),
+                e.message
+            )
+        } else if let Some(name) = e.field.strip_prefix("start.") {
+            anyhow::anyhow!("--start {name}: {}", e.message)
+        } else {
+            anyhow::anyhow!("{e}")
+        }
+    })?;
+    println!(
+        "{} parameters fitted to {} observations: {} light curves in {:.2} s",
+        free.len(),
+        result.observations,
+        result.solver.evaluations,
+        result.solver.wall_time_s
+    );
+    for name in &free {
+        let v = result.parameters[name];
+        match result.uncertainty.get(name).copied().flatten() {
+            Some(s) => println!(
+                "  {name:<32} {v:.6} ± {s:.2e} (start {:.6})",
+                result.start[name]
+            ),
+            None => println!("  {name:<32} {v:.6} ± (undetermined)"),
+        }
+    }
+    println!(
+        "  chi2 {:.2} for {} dof (chi2/dof {:.3}), rms {:.4} mag",
+        result.chi2, result.dof, result.chi2_dof, result.rms_mag
+    );
+    for w in &result.warnings {
+        println!("warning: {w}");
+    }
+    if let Some(out) = &args.out {
+        std::fs::write(out, serde_json::to_string_pretty(&result)? + "\n")
+            .with_context(|| format!("cannot write {}", out.display()))?;
+        println!("result: {}", out.display());
+    }
+    if let Some(plot) = &args.plot {
+        let data = result.plot_data();
+        let title = format!(
+            "{} fitted to {}",
+            file_name(&args.request),
+            file_name(&args.observed)
+        );
+        write_plot(
+            plot,
+            || fit_plot::lightcurve_svg(&title, &data),
+            || fit_plot::lightcurve_png(&title, &data),
+        )?;
+    }
+    Ok(())
+}
+
+fn file_name(p: &Path) -> String {
+    p.file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+fn write_plot(
+    path: &Path,
+    svg: impl FnOnce() -> Result<String, String>,
+    png: impl FnOnce() -> Result<Vec<u8>, String>,
+) -> anyhow::Result<()> {
+    let bytes = if is_png(path) {
+        png().map_err(|e| anyhow::anyhow!("plot: {e}"))?
+    } else {
+        svg()
+            .map_err(|e| anyhow::anyhow!("plot: {e}"))?
+            .into_bytes()
+    };
+    std::fs::write(path, bytes).with_context(|| format!("cannot write {}", path.display()))?;
+    println!("plot: {}", path.display());
+    Ok(())
+}

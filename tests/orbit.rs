@@ -8,9 +8,9 @@ use glint::orbit::frames::{teme_to_itrf, EarthOrientation};
 use glint::orbit::pass::{self, hidden_fraction};
 use glint::orbit::site::Site;
 use glint::orbit::sun;
+use glint::orbit::time::parse_utc;
 use glint::orbit::tle::ElementSet;
 use glint::orbit::UtcTime;
-use glint::scene::validate::parse_utc;
 use serde_json::Value;
 use std::collections::HashMap;
 

@@ -68,6 +68,26 @@ impl UtcTime {
     }
 }
 
+/// ISO 8601 / RFC 3339 UTC time → an exact UTC instant. A missing zone is taken as UTC.
+pub fn parse_utc(s: &str) -> Result<UtcTime, String> {
+    use chrono::{DateTime, NaiveDateTime};
+    if let Ok(dt) = DateTime::parse_from_rfc3339(s) {
+        return Ok(UtcTime::from_datetime(&dt.with_timezone(&chrono::Utc)));
+    }
+    for fmt in [
+        "%Y-%m-%dT%H:%M:%S%.f",
+        "%Y-%m-%d %H:%M:%S%.f",
+        "%Y-%m-%dT%H:%M",
+    ] {
+        if let Ok(n) = NaiveDateTime::parse_from_str(s, fmt) {
+            return Ok(UtcTime::from_naive(&n));
+        }
+    }
+    Err(format!(
+        "`{s}` is not an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)"
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

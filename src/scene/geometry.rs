@@ -5,11 +5,11 @@
 use super::request::{
     AttitudeSpec, EarthOrientationSpec, GeometrySpec, InertiaSpec, OrbitSpec, TimeSpec,
 };
-use super::validate::{parse_utc, ValidationError};
-use super::{Epoch, Limits, Sky};
+use super::{Epoch, Limits, Sky, ValidationError};
 use crate::orbit::attitude::{Law, State, Tumble};
 use crate::orbit::frames::EarthOrientation;
 use crate::orbit::site::Site;
+use crate::orbit::time::parse_utc;
 use crate::orbit::tle::ElementSet;
 use crate::orbit::{pass, UtcTime};
 use crate::radiometry::EARTH_RADIUS_M;

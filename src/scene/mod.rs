@@ -1,15 +1,16 @@
 //! Requests and responses (the wire format, with OpenAPI schemas), their validation
 //! into a checked [`Scene`], and the material presets.
 
+pub mod error;
 pub mod geometry;
 pub mod presets;
 pub mod request;
 pub mod response;
 pub mod validate;
 
+pub use error::{Limits, ValidationError};
 pub use request::Request;
 pub use response::{EpochResult, MaterialAlbedo, Response, Summary};
-pub use validate::{Limits, ValidationError};
 
 use crate::brdf::Brdf;
 use crate::geometry::Mesh;

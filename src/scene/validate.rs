@@ -9,77 +9,12 @@ use super::{
 };
 use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet, Shadowing};
 use crate::geometry::{builtin, obj, Mesh};
+use crate::orbit::time::parse_utc;
 use crate::orbit::UtcTime;
 use crate::radiometry::{planck, AU_M, EARTH_RADIUS_M, SUN_RADIUS_M};
 use glam::{DQuat, DVec3};
-use std::fmt;
 
-/// A bad request: which field, and what is wrong with it.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct ValidationError {
-    /// Path of the field, e.g. `object.materials[1].albedo` (empty for the whole body).
-    pub field: String,
-    pub message: String,
-}
-
-impl ValidationError {
-    pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
-        ValidationError {
-            field: field.into(),
-            message: message.into(),
-        }
-    }
-    /// Whether the error is a size limit (HTTP 413) rather than a bad value (422/400).
-    pub fn is_limit(&self) -> bool {
-        self.message.starts_with("too many") || self.message.starts_with("too large")
-    }
-}
-
-impl fmt::Display for ValidationError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.field.is_empty() {
-            write!(f, "{}", self.message)
-        } else {
-            write!(f, "{}: {}", self.field, self.message)
-        }
-    }
-}
-
-impl std::error::Error for ValidationError {}
-
-/// Size bounds on a request. The CLI uses [`Limits::unlimited`]; the service sets its own.
-///
-/// The last two bound the work before it starts, so that a short request cannot ask for
-/// hours of computation: a request over either is refused (HTTP 413) before any slot is
-/// taken.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Limits {
-    pub max_triangles: usize,
-    pub max_epochs: usize,
-    /// Most triangle-epochs (triangles × epochs): the analytic methods' work grows with it.
-    pub max_triangle_epochs: u64,
-    /// Most pixel samples rendered: the `image` method's epochs × `image_size`² ×
-    /// `image_samples`² plus the thumbnails' frames × size² × samples² (each sample one
-    /// camera ray and up to two shadow rays).
-    pub max_pixel_samples: u64,
-}
-
-impl Limits {
-    pub const fn unlimited() -> Limits {
-        Limits {
-            max_triangles: usize::MAX,
-            max_epochs: usize::MAX,
-            max_triangle_epochs: u64::MAX,
-            max_pixel_samples: u64::MAX,
-        }
-    }
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Limits::unlimited()
-    }
-}
+pub use super::error::{Limits, ValidationError};
 
 /// Parses request JSON, turning serde's errors into field-naming ones.
 pub fn parse_request(text: &str) -> Result<Request, ValidationError> {
@@ -710,26 +645,6 @@ fn parse_time(s: &str) -> Result<f64, String> {
     parse_utc(s).map(UtcTime::unix).map_err(|_| {
         format!("`{s}` is neither seconds nor an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)")
     })
-}
-
-/// ISO 8601 / RFC 3339 UTC time → an exact UTC instant. A missing zone is taken as UTC.
-pub fn parse_utc(s: &str) -> Result<UtcTime, String> {
-    use chrono::{DateTime, NaiveDateTime};
-    if let Ok(dt) = DateTime::parse_from_rfc3339(s) {
-        return Ok(UtcTime::from_datetime(&dt.with_timezone(&chrono::Utc)));
-    }
-    for fmt in [
-        "%Y-%m-%dT%H:%M:%S%.f",
-        "%Y-%m-%d %H:%M:%S%.f",
-        "%Y-%m-%dT%H:%M",
-    ] {
-        if let Ok(n) = NaiveDateTime::parse_from_str(s, fmt) {
-            return Ok(UtcTime::from_naive(&n));
-        }
-    }
-    Err(format!(
-        "`{s}` is not an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)"
-    ))
 }
 
 /// One material of a request, checked (`field` is its path, e.g. `object.materials[1]`);

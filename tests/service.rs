@@ -1070,3 +1070,58 @@ fn brdf_fit_endpoint_gives_the_library_result_and_names_bad_fields() {
         Some("samples[1].brdf"),
     );
 }
+
+/// The real engine, two seconds late: a computation that holds its request's admission.
+fn slow_engine(
+    scene: &glint::Scene,
+    progress: &glint::Progress,
+) -> Result<glint::Response, glint::Cancelled> {
+    std::thread::sleep(Duration::from_secs(2));
+    glint::simulate_with(scene, progress)
+}
+
+#[test]
+fn request_bytes_in_flight_are_bounded_before_the_body_is_read() {
+    let body = scene_request_repeated("plate", 200);
+    let n = body.len();
+    let server = Server::start("inflight", |c| {
+        c.engine = slow_engine;
+        c.limits.max_body_bytes = 2 * n;
+        // room for one such body, not two
+        c.limits.max_inflight_body_bytes = n * 3 / 2;
+        c.limits.max_concurrent = 4;
+    });
+    let addr = server.addr;
+    std::thread::scope(|s| {
+        let first = s.spawn(|| post_json(addr, "/v1/lightcurves", &body));
+        // wait until the first is admitted and computing
+        let start = std::time::Instant::now();
+        while !get(addr, "/metrics")
+            .text()
+            .contains("glint_computations_running 1")
+        {
+            assert!(start.elapsed() < Duration::from_secs(30));
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        let t = std::time::Instant::now();
+        let second = post_json(addr, "/v1/lightcurves", &body);
+        assert_error(&second, 503, None);
+        assert_eq!(second.header("retry-after"), Some("1"));
+        assert!(
+            second.text().contains("bytes in flight"),
+            "{}",
+            second.text()
+        );
+        // turned away at once, not after the first's two seconds
+        assert!(
+            t.elapsed() < Duration::from_millis(1500),
+            "{:?}",
+            t.elapsed()
+        );
+        // requests without a body are not held back
+        assert_eq!(get(addr, "/healthz").status, 200);
+        assert_eq!(first.join().unwrap().status, 200);
+    });
+    // the first's bytes are released with its answer
+    assert_eq!(post_json(addr, "/v1/lightcurves", &body).status, 200);
+}

@@ -27,6 +27,9 @@ pub struct ServeArgs {
     /// Largest request body, bytes.
     #[arg(long, env = "GLINT_MAX_BODY_BYTES", default_value_t = ServiceLimits::default().max_body_bytes)]
     pub max_body_bytes: usize,
+    /// Request body bytes admitted at once; beyond, 503 + Retry-After before reading.
+    #[arg(long, env = "GLINT_MAX_INFLIGHT_BODY_BYTES", default_value_t = ServiceLimits::default().max_inflight_body_bytes)]
+    pub max_inflight_body_bytes: usize,
     /// Largest mesh, triangles.
     #[arg(long, env = "GLINT_MAX_TRIANGLES", default_value_t = ServiceLimits::default().max_triangles)]
     pub max_triangles: usize,
@@ -83,6 +86,7 @@ impl ServeArgs {
         };
         for (name, v) in [
             ("max-body-bytes", self.max_body_bytes),
+            ("max-inflight-body-bytes", self.max_inflight_body_bytes),
             ("max-triangles", self.max_triangles),
             ("max-sync-epochs", self.max_sync_epochs),
             ("max-job-epochs", self.max_job_epochs),
@@ -108,6 +112,7 @@ impl ServeArgs {
             allow_unauthenticated: self.allow_unauthenticated,
             limits: ServiceLimits {
                 max_body_bytes: self.max_body_bytes,
+                max_inflight_body_bytes: self.max_inflight_body_bytes,
                 max_triangles: self.max_triangles,
                 max_sync_epochs: self.max_sync_epochs,
                 max_job_epochs: self.max_job_epochs,

@@ -11,6 +11,10 @@ use tokio::sync::{OwnedSemaphorePermit, Semaphore};
 pub struct ServiceLimits {
     /// Largest request body accepted, bytes.
     pub max_body_bytes: usize,
+    /// Request body bytes admitted at once (counted from `Content-Length` before a byte is
+    /// read; a body without one counts as `max_body_bytes`). Beyond, 503 + `Retry-After`
+    /// at once: parsing a large body costs several times its size in memory.
+    pub max_inflight_body_bytes: usize,
     /// Largest mesh, triangles.
     pub max_triangles: usize,
     /// Most epochs in one `POST /v1/lightcurves`.
@@ -44,6 +48,7 @@ impl Default for ServiceLimits {
         let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
         ServiceLimits {
             max_body_bytes: 32 << 20,
+            max_inflight_body_bytes: 128 << 20,
             max_triangles: 1_000_000,
             max_sync_epochs: 20_000,
             max_job_epochs: 2_000_000,
@@ -156,5 +161,69 @@ impl Slots {
     /// Synchronous requests waiting for a slot now.
     pub fn waiting(&self) -> usize {
         self.waiting.load(Ordering::SeqCst)
+    }
+}
+
+/// Admission by body size: a semaphore of KiB of request bodies in flight, taken before
+/// the body is read and held until the answer is made.
+#[derive(Debug, Clone)]
+pub struct BodyBytes {
+    kib: Arc<Semaphore>,
+    max_body: usize,
+}
+
+impl BodyBytes {
+    /// `max_inflight` bytes in flight at once (at least one body of `max_body` bytes).
+    pub fn new(max_inflight: usize, max_body: usize) -> BodyBytes {
+        let kib = max_inflight
+            .max(max_body)
+            .div_ceil(1024)
+            .min(u32::MAX as usize);
+        BodyBytes {
+            kib: Arc::new(Semaphore::new(kib)),
+            max_body,
+        }
+    }
+}
+
+/// Middleware: admits a request with a body only if its bytes fit in what is left of
+/// the in-flight budget; else `503` + `Retry-After` before its body is read.
+pub async fn admit(
+    axum::extract::State(budget): axum::extract::State<BodyBytes>,
+    req: axum::extract::Request,
+    next: axum::middleware::Next,
+) -> axum::response::Response {
+    use axum::response::IntoResponse;
+    let method = req.method();
+    if method == axum::http::Method::GET
+        || method == axum::http::Method::HEAD
+        || method == axum::http::Method::DELETE
+    {
+        return next.run(req).await;
+    }
+    let declared = req
+        .headers()
+        .get(axum::http::header::CONTENT_LENGTH)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.trim().parse::<usize>().ok());
+    // Over the body limit: the body-limit layer answers 413 without reading it
+    let bytes = match declared {
+        Some(n) if n > budget.max_body => return next.run(req).await,
+        Some(n) => n,
+        None => budget.max_body,
+    };
+    let kib = bytes.div_ceil(1024).max(1).min(u32::MAX as usize) as u32;
+    match budget.kib.clone().try_acquire_many_owned(kib) {
+        Ok(_permit) => next.run(req).await,
+        Err(_) => super::errors::ApiError {
+            retry_after_s: Some(1),
+            ..super::errors::ApiError::new(
+                axum::http::StatusCode::SERVICE_UNAVAILABLE,
+                format!(
+                    "too many request bytes in flight (this body: {bytes} bytes); retry shortly"
+                ),
+            )
+        }
+        .into_response(),
     }
 }

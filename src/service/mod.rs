@@ -1,7 +1,7 @@
 //! The HTTP service: light curves over REST, batch jobs that survive restarts, OpenAPI.
 //!
 //! ```text
-//! request id ─▶ metrics ─▶ JSON errors ─▶ catch panic ─▶ timeout ─▶ auth ─▶ body limit ─▶ routes
+//! request id ─▶ metrics ─▶ JSON errors ─▶ catch panic ─▶ timeout ─▶ auth ─▶ admission (body bytes) ─▶ body limit ─▶ routes
 //!                                                  ├─ /v1/lightcurves: validate → slot → engine (light-curve pool)
 //!                                                  ├─ /v1/jobs…: jobs (durable queue, redb store, job pool)
 //!                                                  └─ /v1/scenes, /healthz, /readyz, /metrics, /docs
@@ -193,6 +193,10 @@ pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
         .fallback(routes::not_found)
         .with_state(state.clone())
         .layer(DefaultBodyLimit::max(limits.max_body_bytes))
+        .layer(from_fn_with_state(
+            limits::BodyBytes::new(limits.max_inflight_body_bytes, limits.max_body_bytes),
+            limits::admit,
+        ))
         .layer(from_fn_with_state(token, auth))
         // A backstop for slow uploads; the light-curve handler has its own, shorter
         // deadline so its 503 names the cause.

@@ -432,7 +432,7 @@ fn scenes_are_the_builtins_and_the_example_files() {
         assert_eq!(s["triangles"], b.mesh().triangles.len());
         assert_eq!(s["materials"], serde_json::json!(b.material_names));
     }
-    for name in ["box-wing", "sphere", "plate"] {
+    for name in ["box-wing", "sphere", "plate", "iss-pass", "geo-night"] {
         let r = get(server.addr, &format!("/v1/scenes/{name}"));
         assert_eq!(r.status, 200);
         let file =

@@ -19,6 +19,13 @@ const EXAMPLES: &[(&str, &str)] = &[
         "box-wing-tumbling",
         include_str!("../../scenes/box-wing-tumbling.json"),
     ),
+    // requests by `geometry` (a TLE, a site, a window, an attitude law)
+    ("iss-pass", include_str!("../../scenes/iss-pass.json")),
+    ("geo-night", include_str!("../../scenes/geo-night.json")),
+    (
+        "rocket-body-tumbling-pass",
+        include_str!("../../scenes/rocket-body-tumbling-pass.json"),
+    ),
 ];
 
 /// A built-in object and its example request.
@@ -76,7 +83,12 @@ pub fn summaries() -> &'static [SceneSummary] {
             if !v.iter().any(|s| s.name == *name) {
                 v.push(SceneSummary {
                     name: name.to_string(),
-                    description: "example request".to_string(),
+                    description: if text.contains("\"geometry\"") {
+                        "example request by geometry (TLE, site, time window, attitude law)"
+                    } else {
+                        "example request"
+                    }
+                    .to_string(),
                     triangles: 0,
                     materials: Vec::new(),
                     example_epochs: epochs_in(text),

@@ -95,69 +95,134 @@ impl Cells {
     }
 }
 
-/// A convex piece still to cut, with the segments that may cross it (index, and whether
-/// it is known to cross).
-type Piece = (Vec<DVec2>, Vec<(u32, bool)>);
+/// A convex piece still to cut: its corners (a range of [`Cutter::points`]) and the
+/// segments that may cross it (a range of [`Cutter::cand`]).
+#[derive(Clone, Copy)]
+struct Piece {
+    points: (u32, u32),
+    cand: (u32, u32),
+}
 
-/// Cuts convex polygon `poly` along the segments `segs` (p, q) into cells that no
-/// segment crosses: a cell is split along a segment's line only where the segment itself
-/// crosses it, so k segments make about k cells, not k². Calls `cell` with each; false
-/// when there would be more than `max` cells (the cells so far have been given).
-pub fn cut_by_segments(
-    poly: &[DVec2],
-    segs: &[(DVec2, DVec2)],
-    tol: f64,
-    max: usize,
-    mut cell: impl FnMut(&[DVec2]),
-) -> bool {
-    // Each piece carries the segments that may cross it, and whether each is known to
-    // (it crossed the parent and lies wholly on this piece's side of the cut): those are
-    // not tested again, so a chain of k segments costs k splits, not k² tests.
-    let mut stack: Vec<Piece> = vec![(
-        poly.to_vec(),
-        (0..segs.len() as u32).map(|i| (i, false)).collect(),
-    )];
-    let mut made = 0usize;
-    let mut pieces = Cells::default();
-    while let Some((c, mut cand)) = stack.pop() {
-        cand.retain(|&(i, known)| known || crosses(&c, segs[i as usize], tol));
-        let Some(&(first, _)) = cand.first() else {
-            made += 1;
-            if made > max {
-                return false;
+/// Cuts convex polygons along segments ([`Cutter::cut`]), with its buffers kept from
+/// call to call: a face crossed by shadows is cut once per epoch, and allocating per
+/// piece cost as much as the cutting.
+#[derive(Default)]
+pub struct Cutter {
+    stack: Vec<Piece>,
+    /// Every piece's corners, appended as pieces are made (cleared per call).
+    points: Vec<DVec2>,
+    /// Every piece's candidate segments: index, and whether it is known to cross.
+    cand: Vec<(u32, bool)>,
+    pieces: Cells,
+}
+
+impl Cutter {
+    /// Cuts convex polygon `poly` along the segments `segs` (p, q) into cells that no
+    /// segment crosses: a cell is split along a segment's line only where the segment
+    /// itself crosses it, so k segments make about k cells, not k². Calls `cell` with
+    /// each; false when there would be more than `max` cells (the cells so far have been
+    /// given).
+    pub fn cut(
+        &mut self,
+        poly: &[DVec2],
+        segs: &[(DVec2, DVec2)],
+        tol: f64,
+        max: usize,
+        mut cell: impl FnMut(&[DVec2]),
+    ) -> bool {
+        // Each piece carries the segments that may cross it, and whether each is known
+        // to (it crossed the parent and lies wholly on this piece's side of the cut):
+        // those are not tested again, so a chain of k segments costs k splits, not k²
+        // tests.
+        self.stack.clear();
+        self.points.clear();
+        self.cand.clear();
+        self.points.extend_from_slice(poly);
+        self.cand.extend((0..segs.len() as u32).map(|i| (i, false)));
+        self.stack.push(Piece {
+            points: (0, self.points.len() as u32),
+            cand: (0, self.cand.len() as u32),
+        });
+        let mut made = 0usize;
+        while let Some(piece) = self.stack.pop() {
+            let (pa, pb) = (piece.points.0 as usize, piece.points.1 as usize);
+            let (ca, cb) = (piece.cand.0 as usize, piece.cand.1 as usize);
+            // keep the candidates that still cross, in order (as `retain`)
+            let mut kept = ca;
+            for k in ca..cb {
+                let (i, known) = self.cand[k];
+                if known || crosses(&self.points[pa..pb], segs[i as usize], tol) {
+                    self.cand[kept] = (i, known);
+                    kept += 1;
+                }
             }
-            cell(&c);
-            continue;
-        };
-        let (p, q) = segs[first as usize];
-        pieces.clear();
-        pieces.push(c.iter().copied());
-        pieces.split(p, q - p, tol, usize::MAX);
-        if pieces.len() < 2 {
-            let rest = cand[1..].iter().map(|&(i, _)| (i, false)).collect();
-            stack.push((c, rest));
-            continue;
-        }
-        // the pieces lie on either side of the line (left first): a segment wholly beyond
-        // it on one side crosses that piece (it crossed this one) and not the other
-        let dir = (q - p).normalize_or_zero();
-        let (mut left, mut right) = (Vec::new(), Vec::new());
-        for &(i, _) in &cand[1..] {
-            let (a, b) = segs[i as usize];
-            let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
-            if sa.min(sb) > 2.0 * tol {
-                left.push((i, true));
-            } else if sa.max(sb) < -2.0 * tol {
-                right.push((i, true));
-            } else {
-                left.push((i, false));
-                right.push((i, false));
+            let c = pa..pb;
+            if kept == ca {
+                made += 1;
+                if made > max {
+                    return false;
+                }
+                cell(&self.points[c]);
+                continue;
+            }
+            let first = self.cand[ca].0;
+            let (p, q) = segs[first as usize];
+            self.pieces.clear();
+            self.pieces.push(self.points[c.clone()].iter().copied());
+            self.pieces.split(p, q - p, tol, usize::MAX);
+            if self.pieces.len() < 2 {
+                // the first candidate did not cut after all: the rest, retested
+                for k in ca + 1..kept {
+                    self.cand[k].1 = false;
+                }
+                self.stack.push(Piece {
+                    points: piece.points,
+                    cand: (ca as u32 + 1, kept as u32),
+                });
+                continue;
+            }
+            // the pieces lie on either side of the line (left first): a segment wholly
+            // beyond it on one side crosses that piece (it crossed this one) and not the
+            // other
+            let dir = (q - p).normalize_or_zero();
+            let left_at = self.cand.len();
+            for k in ca + 1..kept {
+                let (i, _) = self.cand[k];
+                let (a, b) = segs[i as usize];
+                let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
+                if sa.min(sb) > 2.0 * tol {
+                    self.cand.push((i, true));
+                } else if sa.max(sb) < -2.0 * tol {
+                } else {
+                    self.cand.push((i, false));
+                }
+            }
+            let right_at = self.cand.len();
+            for k in ca + 1..kept {
+                let (i, _) = self.cand[k];
+                let (a, b) = segs[i as usize];
+                let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
+                if sa.min(sb) > 2.0 * tol {
+                } else if sa.max(sb) < -2.0 * tol {
+                    self.cand.push((i, true));
+                } else {
+                    self.cand.push((i, false));
+                }
+            }
+            let end = self.cand.len();
+            for (side, cand) in [(0, (left_at, right_at)), (1, (right_at, end))] {
+                let s = self.points.len();
+                let (a, b) = self.pieces.spans[side];
+                self.points
+                    .extend_from_slice(&self.pieces.points[a as usize..b as usize]);
+                self.stack.push(Piece {
+                    points: (s as u32, self.points.len() as u32),
+                    cand: (cand.0 as u32, cand.1 as u32),
+                });
             }
         }
-        stack.push((pieces.cell(0).to_vec(), left));
-        stack.push((pieces.cell(1).to_vec(), right));
+        true
     }
-    true
 }
 
 /// Does segment (p, q) pass through the interior of convex polygon `c` (by more than
@@ -278,7 +343,7 @@ mod tests {
         let seg = (DVec2::new(0.6, 0.2), DVec2::new(2.0, 0.2));
         assert!(crosses(&poly, seg, 1e-12));
         let mut n = 0;
-        assert!(cut_by_segments(&poly, &[seg], 1e-12, 64, |_| n += 1));
+        assert!(Cutter::default().cut(&poly, &[seg], 1e-12, 64, |_| n += 1));
         assert_eq!(n, 2);
     }
 
@@ -293,7 +358,7 @@ mod tests {
             (DVec2::new(2.0, 0.0), DVec2::new(2.0, 1.0)),
         ];
         let mut areas = Vec::new();
-        assert!(cut_by_segments(&square, &segs, 1e-12, 64, |c| areas
+        assert!(Cutter::default().cut(&square, &segs, 1e-12, 64, |c| areas
             .push(area_centroid(c).0)));
         areas.sort_by(f64::total_cmp);
         // the first segment halves the square; the second then cuts the upper half's

@@ -34,7 +34,7 @@ mod topology;
 
 use crate::geometry::{Faces, Mesh};
 use crate::scene::Scene;
-use cells::{area_centroid, cut_by_segments, Cells};
+use cells::{area_centroid, Cells, Cutter};
 use glam::{DVec2, DVec3};
 use grid::{Grid, Polygons};
 use topology::{Topology, NONE};
@@ -109,6 +109,7 @@ pub struct Scratch {
     /// reaches, needs no status along any direction.
     wanted: Vec<u8>,
     cells: Cells,
+    cutter: Cutter,
     lines: Vec<(DVec2, DVec2)>,
     polygon: Vec<DVec2>,
 }
@@ -433,9 +434,11 @@ impl<'a> Silhouettes<'a> {
                     .map(|&v| to2(self.poly_vertices[v as usize])),
             );
             let room = MAX_CELLS.saturating_sub(cells.len());
-            whole &= cut_by_segments(poly, &scratch.lines, self.tol, room, |c| {
-                cells.push(c.iter().copied())
-            });
+            whole &= scratch
+                .cutter
+                .cut(poly, &scratch.lines, self.tol, room, |c| {
+                    cells.push(c.iter().copied())
+                });
             if !whole {
                 break;
             }

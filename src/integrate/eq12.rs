@@ -6,7 +6,7 @@
 //! would evaluate the face sum per spectral bin and weight by the bin's irradiance.
 
 use super::visibility::Uncertain;
-use super::Prepared;
+use super::{Occlusion, Prepared};
 use crate::brdf::earth_light::EarthLight;
 use crate::brdf::sun_disk::{EarthDisk, SunLight};
 use crate::brdf::Frame;
@@ -97,6 +97,24 @@ impl EpochLight {
     }
 }
 
+/// The directions of one epoch in the body frame (unit vectors) and the Sun's band
+/// irradiance at the object after any eclipse (W/m²).
+#[derive(Clone, Copy)]
+struct Directions {
+    view: DVec3,
+    sun: DVec3,
+    sun_w_m2: f64,
+    /// Along which earthshine casts shadows, when there is earthshine.
+    earth: Option<DVec3>,
+}
+
+impl Directions {
+    /// The Sun's direction when it lights the object (not in umbra).
+    fn sunlit(&self) -> Option<DVec3> {
+        (self.sun_w_m2 > 0.0).then_some(self.sun)
+    }
+}
+
 /// Evaluates one epoch; returns the result and the number of rays cast.
 ///
 /// `cancelled` is polled inside the epoch where one epoch can take long (the `image`
@@ -107,49 +125,65 @@ pub fn evaluate(
     scratch: &mut Scratch,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> (EpochResult, u64) {
-    let scene = p.scene;
-    let ill = &scene.illumination;
+    let ill = &p.scene.illumination;
     let range = epoch.observer.length();
-    let v = epoch.observer / range;
-    let l = epoch.sun;
+    let light = EpochLight::at(ill, epoch);
+    let dirs = Directions {
+        view: epoch.observer / range,
+        sun: epoch.sun,
+        sun_w_m2: light.sun_w_m2,
+        earth: light.earthshine.shadow_dir,
+    };
+    let lights = material_lights(p, epoch, &light);
+    let (decided, unshadowed) = lit_faces(p, &lights, &dirs, scratch);
+    let (sums, rays) = visible_sums(p, &dirs, decided, unshadowed, scratch, cancelled);
+    (epoch_result(p, epoch, &light, sums), rays)
+}
 
-    let EpochLight {
-        sun_w_m2: es,
-        eclipse: hidden,
-        penumbra,
-        earthshine,
-    } = EpochLight::at(ill, epoch);
+/// Per material, what lights its faces at this epoch with what does not depend on the
+/// face computed once: the Sun's and each earthshine beam's half vector and Fresnel term.
+fn material_lights<'a>(
+    p: &'a Prepared,
+    epoch: &Epoch,
+    light: &'a EpochLight,
+) -> Vec<MaterialLight<'a>> {
+    let v = epoch.observer / epoch.observer.length();
     let sun_radius = sun::angular_radius(epoch.sun_distance_m);
-
-    // Pass 1: which faces send light to the observer, and how much if fully visible.
-    // Per material, what does not depend on the face is computed once: the Sun's and each
-    // earthshine beam's half vector and Fresnel term.
-    let lights: Vec<MaterialLight> = scene
+    p.scene
         .materials
         .iter()
         .map(|m| MaterialLight {
             two_sided: m.two_sided,
-            sun: SunLight::eclipsed(&m.brdf, l, v, sun_radius, penumbra),
-            earth: EarthLight::new(&m.brdf, &earthshine, v),
+            sun: SunLight::eclipsed(&m.brdf, epoch.sun, v, sun_radius, light.penumbra),
+            earth: EarthLight::new(&m.brdf, &light.earthshine, v),
         })
-        .collect();
+        .collect()
+}
+
+/// Pass 1: which faces send light to the observer, and how much each would if wholly lit
+/// and seen. Faces whose visible areas need no search are summed here, where their terms
+/// are at hand: every face when nothing can shadow or hide another, and a dish's inner
+/// faces that their own lid decides along every direction; the rest are listed in
+/// `scratch.lit` for pass 2. Returns those sums and the whole unshadowed signal (W/sr).
+fn lit_faces(
+    p: &Prepared,
+    lights: &[MaterialLight],
+    dirs: &Directions,
+    scratch: &mut Scratch,
+) -> (Sums, f64) {
+    let (v, es) = (dirs.view, dirs.sun_w_m2);
     scratch.lit.clear();
     scratch.visibility.reset();
     let mut unshadowed = 0.0;
-    // faces whose visible areas need no search (a dish's inner faces that their own lid
-    // decides along every direction): summed here, where their terms are at hand
-    let lids = match &p.visibility {
-        Some(vis) if p.image.is_none() => vis.lid_table(
-            &mut scratch.visibility,
-            v,
-            (es > 0.0).then_some(l),
-            earthshine.shadow_dir,
-        ),
+    let lids = match &p.occlusion {
+        Occlusion::PerFace(vis) => {
+            vis.lid_table(&mut scratch.visibility, v, dirs.sunlit(), dirs.earth)
+        }
         _ => None,
     };
     // Without rays or pixels every face is seen and lit whole: summed here too, in the
     // order pass 2 would, with no list between the passes.
-    let whole = p.visibility.is_none() && p.image.is_none() && p.silhouettes.is_none();
+    let whole = matches!(p.occlusion, Occlusion::None);
     let mut decided = Sums::default();
     for (i, face) in p.faces.faces.iter().enumerate() {
         let light = &lights[face.material as usize];
@@ -195,105 +229,109 @@ pub fn evaluate(
             });
         }
     }
+    (decided, unshadowed)
+}
 
-    // Pass 2: visible fractions (all 1 without rays).
+/// Pass 2: the lit-and-seen areas of the faces pass 1 listed, by the prepared method,
+/// added to pass 1's sums. Returns the epoch's sums and the rays cast.
+fn visible_sums(
+    p: &Prepared,
+    dirs: &Directions,
+    decided: Sums,
+    unshadowed: f64,
+    scratch: &mut Scratch,
+    cancelled: &(dyn Fn() -> bool + Sync),
+) -> (Sums, u64) {
+    let Scratch {
+        lit,
+        visibility,
+        image,
+        silhouettes,
+    } = scratch;
     let mut sums = decided;
-    let mut rays = 0u64;
-    if let Some(img) = &p.image {
-        let lit = scratch
-            .lit
-            .iter()
-            .map(|lf| (lf.face, lf.side, lf.sun > 0.0, lf.earth > 0.0));
-        rays += img.sample(
-            &mut scratch.image,
-            &p.faces,
-            lit,
-            v,
-            l,
-            earthshine.shadow_dir,
-            cancelled,
-        );
-    }
-    // Faces whose shadows are clipped exactly need no budget. For sampled ones the
-    // tolerance is a share of the epoch's signal. The first sweep budgets against the
-    // unshadowed signal; where shadows leave much less than that (a glint's tail on a
-    // mostly shadowed face), the sweep is repeated against the signal it found, so the
-    // tolerance stays relative to what the observer actually receives.
-    let mut exact_rays = 0u64;
-    if let Some(sil) = &p.silhouettes {
-        let s = &mut scratch.silhouettes;
-        let wanted = scratch
-            .lit
-            .iter()
-            .map(|lf| (lf.face, lf.sun > 0.0, lf.earth > 0.0));
-        sil.want(s, wanted);
-        sil.prepare(s, 0, Some(v));
-        sil.prepare(s, 1, (es > 0.0).then_some(l));
-        sil.prepare(s, 2, earthshine.shadow_dir);
-        exact_rays += sil.group_rays(s);
-    }
-    let mut reference = unshadowed;
-    for sweep in 0..2 {
-        let rays_before = rays;
-        sums = decided;
-        for lf in &scratch.lit {
-            // lit-and-seen areas, m²
-            let (a_sun, a_earth) = match (&p.visibility, &p.silhouettes) {
-                _ if p.image.is_some() => {
-                    let (f_sun, f_earth) = scratch.image.fractions(lf.face as usize, lf.area);
-                    (f_sun * lf.area, f_earth * lf.area)
-                }
-                (_, Some(sil)) => {
-                    let (a_sun, a_earth, n) = sil.areas(
-                        &mut scratch.silhouettes,
-                        lf.face as usize,
-                        lf.area,
-                        &p.faces.faces[lf.face as usize].triangles,
-                        lf.sun > 0.0,
-                        lf.earth > 0.0,
-                    );
-                    exact_rays += n;
-                    (a_sun, a_earth)
-                }
-                // without rays or pixels pass 1 summed every face (`whole`)
-                (None, None) => unreachable!("no face is listed for pass 2 without visibility"),
-                (Some(vis), None) => {
-                    let dirs = Uncertain {
-                        view: v,
-                        sun: (lf.sun > 0.0).then_some(l),
-                        earth: if lf.earth > 0.0 {
-                            earthshine.shadow_dir
-                        } else {
-                            None
-                        },
+    match &p.occlusion {
+        // pass 1 summed every face
+        Occlusion::None => (sums, 0),
+        Occlusion::Image(img) => {
+            let faces = lit
+                .iter()
+                .map(|lf| (lf.face, lf.side, lf.sun > 0.0, lf.earth > 0.0));
+            let rays = img.sample(
+                image, &p.faces, faces, dirs.view, dirs.sun, dirs.earth, cancelled,
+            );
+            for lf in lit.iter() {
+                let (f_sun, f_earth) = image.fractions(lf.face as usize, lf.area);
+                sums.add(lf.sun, lf.earth, (f_sun * lf.area, f_earth * lf.area));
+            }
+            (sums, rays)
+        }
+        Occlusion::Silhouettes(sil) => {
+            let wanted = lit.iter().map(|lf| (lf.face, lf.sun > 0.0, lf.earth > 0.0));
+            sil.want(silhouettes, wanted);
+            sil.prepare(silhouettes, 0, Some(dirs.view));
+            sil.prepare(silhouettes, 1, dirs.sunlit());
+            sil.prepare(silhouettes, 2, dirs.earth);
+            let mut rays = sil.group_rays(silhouettes);
+            for lf in lit.iter() {
+                let (a_sun, a_earth, n) = sil.areas(
+                    silhouettes,
+                    lf.face as usize,
+                    lf.area,
+                    &p.faces.faces[lf.face as usize].triangles,
+                    lf.sun > 0.0,
+                    lf.earth > 0.0,
+                );
+                rays += n;
+                sums.add(lf.sun, lf.earth, (a_sun, a_earth));
+            }
+            (sums, rays)
+        }
+        Occlusion::PerFace(vis) => {
+            // Faces whose shadows are clipped exactly need no budget. For sampled ones
+            // the tolerance is a share of the epoch's signal. The first sweep budgets
+            // against the unshadowed signal; where shadows leave much less than that (a
+            // glint's tail on a mostly shadowed face), the sweep is repeated against the
+            // signal it found, so the tolerance stays relative to what the observer
+            // actually receives.
+            let mut rays = 0u64;
+            let mut reference = unshadowed;
+            for sweep in 0..2 {
+                let rays_before = rays;
+                sums = decided;
+                for lf in lit.iter() {
+                    let uncertain = Uncertain {
+                        view: dirs.view,
+                        sun: (lf.sun > 0.0).then_some(dirs.sun),
+                        earth: if lf.earth > 0.0 { dirs.earth } else { None },
                     };
                     // Area of this face whose misclassification costs the tolerance's
                     // share of the signal.
                     let weight = lf.sun + lf.earth;
-                    let budget = scene.tolerance * reference / weight;
-                    let (a_sun, a_earth, n) = vis.visible_area(
-                        &mut scratch.visibility,
-                        lf.face as usize,
-                        lf.side,
-                        &dirs,
-                        budget,
-                    );
+                    let budget = p.scene.tolerance * reference / weight;
+                    let (a_sun, a_earth, n) =
+                        vis.visible_area(visibility, lf.face as usize, lf.side, &uncertain, budget);
                     rays += n;
-                    (a_sun, a_earth)
+                    sums.add(lf.sun, lf.earth, (a_sun, a_earth));
                 }
-            };
-            sums.add(lf.sun, lf.earth, (a_sun, a_earth));
+                let found = sums.sun + sums.earth;
+                // exact (clipped) areas do not depend on the budget: only sampled faces
+                // re-run
+                let rays_used = rays > rays_before;
+                if sweep > 0 || !rays_used || found >= 0.5 * reference || found <= 0.0 {
+                    break;
+                }
+                reference = found;
+            }
+            (sums, rays)
         }
-        let found = sums.sun + sums.earth;
-        // exact (clipped) areas do not depend on the budget: only sampled faces re-run
-        let rays_used = p.image.is_none() && rays > rays_before;
-        if sweep > 0 || !rays_used || found >= 0.5 * reference || found <= 0.0 {
-            break;
-        }
-        reference = found;
     }
+}
 
-    rays += exact_rays;
+/// The epoch's result from its sums: irradiance at the observer (zero where the Earth
+/// is across the line of sight), magnitudes, geometry.
+fn epoch_result(p: &Prepared, epoch: &Epoch, light: &EpochLight, sums: Sums) -> EpochResult {
+    let range = epoch.observer.length();
+    let v = epoch.observer / range;
     let r2 = range * range;
     let Sums {
         sun: sun_sum,
@@ -308,27 +346,24 @@ pub fn evaluate(
     let seen = if blocked { 0.0 } else { 1.0 };
     let irradiance = seen * intensity / r2;
     let mag = magnitude::apparent(irradiance, p.sun_band_1au);
-    (
-        EpochResult {
-            t: epoch.t,
-            irradiance_w_m2: irradiance,
-            sun_w_m2: seen * sun_sum / r2,
-            earthshine_w_m2: seen * earth_sum / r2,
-            intensity_w_sr: intensity,
-            magnitude: mag,
-            magnitude_std: magnitude::standardised(mag, range),
-            phase_angle_deg: angle_between(l, v).to_degrees(),
-            range_m: range,
-            lit_visible_area_m2: lit_visible_area,
-            eclipse: hidden,
-            earth_blocks_view: blocked,
-            azimuth_deg: None,
-            elevation_deg: None,
-            sun_elevation_deg: None,
-            in_earth_shadow: None,
-        },
-        rays,
-    )
+    EpochResult {
+        t: epoch.t,
+        irradiance_w_m2: irradiance,
+        sun_w_m2: seen * sun_sum / r2,
+        earthshine_w_m2: seen * earth_sum / r2,
+        intensity_w_sr: intensity,
+        magnitude: mag,
+        magnitude_std: magnitude::standardised(mag, range),
+        phase_angle_deg: angle_between(epoch.sun, v).to_degrees(),
+        range_m: range,
+        lit_visible_area_m2: lit_visible_area,
+        eclipse: light.eclipse,
+        earth_blocks_view: blocked,
+        azimuth_deg: None,
+        elevation_deg: None,
+        sun_elevation_deg: None,
+        in_earth_shadow: None,
+    }
 }
 
 /// Running sums of one epoch: W/sr from the Sun and from earthshine, and the seen and

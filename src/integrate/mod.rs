@@ -56,17 +56,28 @@ impl Progress {
 #[error("cancelled")]
 pub struct Cancelled;
 
+/// How an epoch finds which part of each face is lit and seen: one per method, each
+/// with what it builds once per request.
+pub enum Occlusion<'a> {
+    /// Nothing can shadow or hide anything: a convex mesh (or `convex` asked for), every
+    /// face facing a light and the observer is lit and seen whole.
+    None,
+    /// The per-face path (`adaptive`, `centroid`): proofs, exact clipping and rays face
+    /// by face.
+    PerFace(Visibility),
+    /// The silhouette method (what `auto` takes for a non-convex mesh).
+    Silhouettes(silhouettes::Silhouettes<'a>),
+    /// The `image` method's pixel sampler.
+    Image(self::image::ImageView),
+}
+
 /// Everything computed once per request.
 pub struct Prepared<'a> {
     pub scene: &'a Scene,
     pub faces: Faces,
     pub convex: bool,
-    /// Ray-casting state; `None` when no rays are needed.
-    pub visibility: Option<Visibility>,
-    /// The `image` method's pixel sampler (replaces `visibility` when present).
-    pub image: Option<self::image::ImageView>,
-    /// The silhouette method's mesh structure (replaces `visibility` when present).
-    pub silhouettes: Option<silhouettes::Silhouettes<'a>>,
+    /// How the parts of faces that are lit and seen are found.
+    pub occlusion: Occlusion<'a>,
     /// Band solar irradiance at 1 AU, W/m² (the magnitude zero point).
     pub sun_band_1au: f64,
     /// What was chosen and why, for `summary.method`.
@@ -131,20 +142,22 @@ impl<'a> Prepared<'a> {
                 ),
             ),
         };
-        let image =
-            (scene.method == Method::Image).then(|| self::image::ImageView::build(scene, &faces));
-        let silhouettes = (matches!(scene.method, Method::Silhouette)
-            || (scene.method == Method::Auto && !convex))
-            .then(|| silhouettes::Silhouettes::build(scene, &faces));
+        let occlusion = if let Some(v) = visibility {
+            Occlusion::PerFace(v)
+        } else if scene.method == Method::Image {
+            Occlusion::Image(self::image::ImageView::build(scene, &faces))
+        } else if scene.method == Method::Silhouette || (scene.method == Method::Auto && !convex) {
+            Occlusion::Silhouettes(silhouettes::Silhouettes::build(scene, &faces))
+        } else {
+            Occlusion::None
+        };
         let ill = &scene.illumination;
         let method = format!("{method}; {}", light_model_note(scene));
         Prepared {
             scene,
             faces,
             convex,
-            visibility,
-            image,
-            silhouettes,
+            occlusion,
             sun_band_1au: sun::band_irradiance_1au(ill.band_um, ill.sun_temperature_k),
             method,
         }

@@ -74,12 +74,12 @@ impl Grid {
         self.u = u;
         self.w = w;
         self.at.clear();
+        self.at
+            .extend(mesh.vertices.iter().map(|v| DVec2::new(v.dot(u), v.dot(w))));
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for v in mesh.vertices {
-            let p = DVec2::new(v.dot(u), v.dot(w));
+        for &p in &self.at {
             lo = lo.min(p);
             hi = hi.max(p);
-            self.at.push(p);
         }
         let ext = (hi - lo).max(DVec2::splat(1e-300));
         let mut kept = std::mem::take(&mut self.kept);
@@ -114,12 +114,14 @@ impl Grid {
         // each polygon's cells, found once for both passes of the counting sort
         let mut spans = std::mem::take(&mut self.spans);
         spans.clear();
+        // (whole rows of cells as slices: no per-cell bounds checks or inclusive ranges)
         for &t in &kept {
             let (a, b) = self.cell_box(t as usize);
             spans.push([a.0 as u32, a.1 as u32, b.0 as u32, b.1 as u32]);
-            for y in a.1..=b.1 {
-                for x in a.0..=b.0 {
-                    self.counts[y * self.nx + x + 1] += 1;
+            for y in a.1..b.1 + 1 {
+                let row = y * self.nx + 1;
+                for c in &mut self.counts[row + a.0..row + b.0 + 1] {
+                    *c += 1;
                 }
             }
         }
@@ -131,11 +133,11 @@ impl Grid {
         self.items.clear();
         self.items.resize(self.counts[n] as usize, 0);
         for (&t, &[x0, y0, x1, y1]) in kept.iter().zip(&spans) {
-            for y in y0 as usize..=y1 as usize {
-                for x in x0 as usize..=x1 as usize {
-                    let c = y * self.nx + x;
-                    self.items[self.counts[c] as usize] = t;
-                    self.counts[c] += 1;
+            for y in y0 as usize..y1 as usize + 1 {
+                let row = y * self.nx;
+                for c in &mut self.counts[row + x0 as usize..row + x1 as usize + 1] {
+                    self.items[*c as usize] = t;
+                    *c += 1;
                 }
             }
         }

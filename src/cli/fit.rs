@@ -1,10 +1,14 @@
-//! `glint fit-brdf` and `glint fit-lightcurve`: files in, [`crate::fit`] does the work,
-//! a summary out (and the JSON result and a plot when asked).
+//! `glint fit-brdf`, `glint sample-brdf` and `glint fit-lightcurve`: files in,
+//! [`crate::fit`] does the work, a summary out (and the JSON result and a plot when asked).
+//!
+//! Each command is its arguments and a `run_*` function; what they share (reading a file,
+//! `NAME=VALUE` lists, writing the result and the plot, printing warnings) is at the end.
 
-use crate::fit::{brdf, lightcurve, solve::Loss};
+use crate::fit::{brdf, lightcurve, params, solve::Loss};
 use crate::report::fit_plot;
 use crate::scene::validate;
 use anyhow::Context;
+use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -32,6 +36,85 @@ pub struct FitBrdfArgs {
     /// Residual space: log (default) or linear.
     #[arg(long, default_value = "log")]
     pub space: String,
+}
+
+/// `glint fit-brdf`: a material model fitted to the samples of a CSV file.
+pub fn run_brdf(args: &FitBrdfArgs) -> anyhow::Result<()> {
+    let text = read_text(&args.samples)?;
+    let samples = brdf::parse_csv(&text)
+        .map_err(|e| anyhow::anyhow!("invalid samples {}: {e}", args.samples.display()))?;
+    let request = brdf::BrdfFitRequest {
+        model: args.model.clone(),
+        samples: Vec::new(),
+        fixed: args
+            .fix
+            .as_deref()
+            .map(|f| assignments("--fix", f))
+            .transpose()?,
+        loss: Some(args.loss.clone()),
+        space: Some(args.space.clone()),
+        plot: None,
+    };
+    let opts = brdf::Options::from_request(&request).map_err(|e| {
+        anyhow::anyhow!(
+            "--{}: {}",
+            e.field
+                .split('.')
+                .next()
+                .unwrap_or("")
+                .replace("fixed", "fix"),
+            e.message
+        )
+    })?;
+    let result = brdf::fit(&samples, &opts).map_err(|e| match e.field.strip_prefix("fixed.") {
+        Some(name) => anyhow::anyhow!("--fix {name}: {}", e.message),
+        None => anyhow::anyhow!("{e}"),
+    })?;
+    print_brdf_summary(&result);
+    write_result(args.out.as_deref(), &result)?;
+    if let Some(plot) = &args.plot {
+        let brdf = result.brdf().context("fitted parameters")?;
+        let groups = brdf::plot_data(&samples, &brdf);
+        let title = format!("{} fitted to {}", result.model, file_name(&args.samples));
+        write_plot(
+            plot,
+            || fit_plot::brdf_svg(&title, &groups),
+            || fit_plot::brdf_png(&title, &groups),
+        )?;
+    }
+    Ok(())
+}
+
+/// The fit's summary on standard output: the solver's work, each parameter with its 1σ,
+/// the misfit and albedo, the warnings.
+fn print_brdf_summary(result: &brdf::BrdfFit) {
+    println!(
+        "{} fitted to {} samples ({} starts, {} evaluations, {:.2} s, loss {}, {} space)",
+        result.model,
+        result.samples,
+        result.solver.starts,
+        result.solver.evaluations,
+        result.solver.wall_time_s,
+        result.solver.loss,
+        result.space
+    );
+    for (name, value) in &result.parameters {
+        match (
+            result.uncertainty.get(name),
+            result.fixed.contains_key(name),
+        ) {
+            (_, true) => println!("  {name:<10} {value:.6} (fixed)"),
+            (Some(Some(s)), _) => println!("  {name:<10} {value:.6} ± {s:.2e}"),
+            _ => println!("  {name:<10} {value:.6} ± (undetermined)"),
+        }
+    }
+    println!(
+        "  rms {:.4e} sr⁻¹, rms_log {}, albedo (normal incidence) {:.3}",
+        result.rms,
+        result.rms_log.map_or("-".into(), |r| format!("{r:.4}")),
+        result.albedo
+    );
+    print_warnings(&result.warnings);
 }
 
 #[derive(Debug, clap::Args)]
@@ -62,33 +145,7 @@ pub fn run_sample(args: &SampleBrdfArgs) -> anyhow::Result<()> {
             brdf::Model::NAMES
         )
     })?;
-    let given = assignments("--params", &args.params)?;
-    let mut p = Vec::new();
-    for spec in model.params() {
-        let v = *given.get(spec.name).ok_or_else(|| {
-            anyhow::anyhow!(
-                "--params: `{}` is required by model `{}`",
-                spec.name,
-                model.name()
-            )
-        })?;
-        if !v.is_finite() || !spec.bound.contains(v) {
-            anyhow::bail!(
-                "--params {}: {v} is out of range {}",
-                spec.name,
-                spec.bound.describe()
-            );
-        }
-        p.push(v);
-    }
-    for name in given.keys() {
-        if !model.params().iter().any(|s| s.name == name) {
-            anyhow::bail!(
-                "--params {name}: not a parameter of model `{}`",
-                model.name()
-            );
-        }
-    }
+    let p = model_values(model, &args.params)?;
     if !(args.noise.is_finite() && args.noise >= 0.0) {
         anyhow::bail!("--noise: must be a finite number >= 0");
     }
@@ -110,6 +167,34 @@ pub fn run_sample(args: &SampleBrdfArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot write {}", args.out.display()))?;
     println!("{} samples: {}", samples.len(), args.out.display());
     Ok(())
+}
+
+/// `--params`: every parameter of `model`, in its order, each within its bounds, and no
+/// other.
+fn model_values(model: brdf::Model, text: &str) -> anyhow::Result<Vec<f64>> {
+    let given = assignments("--params", text)?;
+    let mut p = Vec::new();
+    for spec in model.params() {
+        let v = *given.get(spec.name).ok_or_else(|| {
+            anyhow::anyhow!(
+                "--params: `{}` is required by model `{}`",
+                spec.name,
+                model.name()
+            )
+        })?;
+        params::check_in_bound(spec.name.to_string(), v, spec.bound)
+            .map_err(|e| anyhow::anyhow!("--params {}: {}", e.field, e.message))?;
+        p.push(v);
+    }
+    for name in given.keys() {
+        if !model.params().iter().any(|s| s.name == name) {
+            anyhow::bail!(
+                "--params {name}: not a parameter of model `{}`",
+                model.name()
+            );
+        }
+    }
+    Ok(p)
 }
 
 #[derive(Debug, clap::Args)]
@@ -140,113 +225,12 @@ pub struct FitLightcurveArgs {
     pub plot: Option<PathBuf>,
 }
 
-/// `name=value,name=value` → map; errors name the option and the item.
-fn assignments(option: &str, text: &str) -> anyhow::Result<BTreeMap<String, f64>> {
-    let mut out = BTreeMap::new();
-    for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        let (name, value) = item
-            .split_once('=')
-            .ok_or_else(|| anyhow::anyhow!("{option}: `{item}` is not NAME=VALUE"))?;
-        let v: f64 = value
-            .trim()
-            .parse()
-            .map_err(|_| anyhow::anyhow!("{option}: `{value}` is not a number (in `{item}`)"))?;
-        out.insert(name.trim().to_string(), v);
-    }
-    Ok(out)
-}
-
-fn is_png(path: &Path) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
-}
-
-pub fn run_brdf(args: &FitBrdfArgs) -> anyhow::Result<()> {
-    let text = std::fs::read_to_string(&args.samples)
-        .with_context(|| format!("cannot read {}", args.samples.display()))?;
-    let samples = brdf::parse_csv(&text)
-        .map_err(|e| anyhow::anyhow!("invalid samples {}: {e}", args.samples.display()))?;
-    let request = brdf::BrdfFitRequest {
-        model: args.model.clone(),
-        samples: Vec::new(),
-        fixed: args
-            .fix
-            .as_deref()
-            .map(|f| assignments("--fix", f))
-            .transpose()?,
-        loss: Some(args.loss.clone()),
-        space: Some(args.space.clone()),
-        plot: None,
-    };
-    let opts = brdf::Options::from_request(&request).map_err(|e| {
-        anyhow::anyhow!(
-            "--{}: {}",
-            e.field
-                .split('.')
-                .next()
-                .unwrap_or("")
-                .replace("fixed", "fix"),
-            e.message
-        )
-    })?;
-    let result = brdf::fit(&samples, &opts).map_err(|e| match e.field.strip_prefix("fixed.") {
-        Some(name) => anyhow::anyhow!("--fix {name}: {}", e.message),
-        None => anyhow::anyhow!("{e}"),
-    })?;
-    println!(
-        "{} fitted to {} samples ({} starts, {} evaluations, {:.2} s, loss {}, {} space)",
-        result.model,
-        result.samples,
-        result.solver.starts,
-        result.solver.evaluations,
-        result.solver.wall_time_s,
-        result.solver.loss,
-        result.space
-    );
-    for (name, value) in &result.parameters {
-        match (
-            result.uncertainty.get(name),
-            result.fixed.contains_key(name),
-        ) {
-            (_, true) => println!("  {name:<10} {value:.6} (fixed)"),
-            (Some(Some(s)), _) => println!("  {name:<10} {value:.6} ± {s:.2e}"),
-            _ => println!("  {name:<10} {value:.6} ± (undetermined)"),
-        }
-    }
-    println!(
-        "  rms {:.4e} sr⁻¹, rms_log {}, albedo (normal incidence) {:.3}",
-        result.rms,
-        result.rms_log.map_or("-".into(), |r| format!("{r:.4}")),
-        result.albedo
-    );
-    for w in &result.warnings {
-        println!("warning: {w}");
-    }
-    if let Some(out) = &args.out {
-        std::fs::write(out, serde_json::to_string_pretty(&result)? + "\n")
-            .with_context(|| format!("cannot write {}", out.display()))?;
-        println!("result: {}", out.display());
-    }
-    if let Some(plot) = &args.plot {
-        let brdf = result.brdf().context("fitted parameters")?;
-        let groups = brdf::plot_data(&samples, &brdf);
-        let title = format!("{} fitted to {}", result.model, file_name(&args.samples));
-        write_plot(
-            plot,
-            || fit_plot::brdf_svg(&title, &groups),
-            || fit_plot::brdf_png(&title, &groups),
-        )?;
-    }
-    Ok(())
-}
-
+/// `glint fit-lightcurve`: a request's free parameters fitted to observed magnitudes.
 pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
-    let text = std::fs::read_to_string(&args.request)
-        .with_context(|| format!("cannot read {}", args.request.display()))?;
+    let text = read_text(&args.request)?;
     let request = validate::parse_request(&text)
         .map_err(|e| anyhow::anyhow!("invalid request {}: {e}", args.request.display()))?;
-    let observed_text = std::fs::read_to_string(&args.observed)
-        .with_context(|| format!("cannot read {}", args.observed.display()))?;
+    let observed_text = read_text(&args.observed)?;
     let observed = lightcurve::parse_observed_csv(&observed_text, args.sigma)
         .map_err(|e| anyhow::anyhow!("invalid observations {}: {e}", args.observed.display()))?;
     let free: Vec<String> = args
@@ -285,35 +269,8 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
             anyhow::anyhow!("{e}")
         }
     })?;
-    println!(
-        "{} parameters fitted to {} observations: {} light curves in {:.2} s",
-        free.len(),
-        result.observations,
-        result.solver.evaluations,
-        result.solver.wall_time_s
-    );
-    for name in &free {
-        let v = result.parameters[name];
-        match result.uncertainty.get(name).copied().flatten() {
-            Some(s) => println!(
-                "  {name:<32} {v:.6} ± {s:.2e} (start {:.6})",
-                result.start[name]
-            ),
-            None => println!("  {name:<32} {v:.6} ± (undetermined)"),
-        }
-    }
-    println!(
-        "  chi2 {:.2} for {} dof (chi2/dof {:.3}), rms {:.4} mag",
-        result.chi2, result.dof, result.chi2_dof, result.rms_mag
-    );
-    for w in &result.warnings {
-        println!("warning: {w}");
-    }
-    if let Some(out) = &args.out {
-        std::fs::write(out, serde_json::to_string_pretty(&result)? + "\n")
-            .with_context(|| format!("cannot write {}", out.display()))?;
-        println!("result: {}", out.display());
-    }
+    print_lightcurve_summary(&result, &free);
+    write_result(args.out.as_deref(), &result)?;
     if let Some(plot) = &args.plot {
         let data = result.plot_data();
         let title = format!(
@@ -328,6 +285,75 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// The fit's summary on standard output: the work, each free parameter (in the order
+/// given) with its 1σ and start, χ² and the RMS, the warnings.
+fn print_lightcurve_summary(result: &lightcurve::LightcurveFit, free: &[String]) {
+    println!(
+        "{} parameters fitted to {} observations: {} light curves in {:.2} s",
+        free.len(),
+        result.observations,
+        result.solver.evaluations,
+        result.solver.wall_time_s
+    );
+    for name in free {
+        let v = result.parameters[name];
+        match result.uncertainty.get(name).copied().flatten() {
+            Some(s) => println!(
+                "  {name:<32} {v:.6} ± {s:.2e} (start {:.6})",
+                result.start[name]
+            ),
+            None => println!("  {name:<32} {v:.6} ± (undetermined)"),
+        }
+    }
+    println!(
+        "  chi2 {:.2} for {} dof (chi2/dof {:.3}), rms {:.4} mag",
+        result.chi2, result.dof, result.chi2_dof, result.rms_mag
+    );
+    print_warnings(&result.warnings);
+}
+
+/// A file's text; the error names the file.
+fn read_text(path: &Path) -> anyhow::Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
+/// `name=value,name=value` → map; errors name the option and the item.
+fn assignments(option: &str, text: &str) -> anyhow::Result<BTreeMap<String, f64>> {
+    let mut out = BTreeMap::new();
+    for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        let (name, value) = item
+            .split_once('=')
+            .ok_or_else(|| anyhow::anyhow!("{option}: `{item}` is not NAME=VALUE"))?;
+        let v: f64 = value
+            .trim()
+            .parse()
+            .map_err(|_| anyhow::anyhow!("{option}: `{value}` is not a number (in `{item}`)"))?;
+        out.insert(name.trim().to_string(), v);
+    }
+    Ok(out)
+}
+
+fn print_warnings(warnings: &[String]) {
+    for w in warnings {
+        println!("warning: {w}");
+    }
+}
+
+/// `--out`: the result as pretty JSON, when asked.
+fn write_result(out: Option<&Path>, result: &impl Serialize) -> anyhow::Result<()> {
+    if let Some(out) = out {
+        std::fs::write(out, serde_json::to_string_pretty(result)? + "\n")
+            .with_context(|| format!("cannot write {}", out.display()))?;
+        println!("result: {}", out.display());
+    }
+    Ok(())
+}
+
+fn is_png(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"))
 }
 
 fn file_name(p: &Path) -> String {

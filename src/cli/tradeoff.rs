@@ -55,7 +55,36 @@ fn every_nth(scene: &Scene, n: usize) -> Scene {
     }
 }
 
+/// The reference run, its check and the line that reports their agreement.
+struct Reference {
+    run: Run,
+    /// `method setting` of the reference.
+    label: String,
+    /// Whether the reference is the image method (`--reference image`).
+    image: bool,
+    check_line: String,
+}
+
 pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
+    let (scene, name) = load(args)?;
+    let reference = reference(args, &scene);
+    let rows = sweep(args, &scene, &reference.run);
+    let png_path = write_chart(args, &name, &scene, &rows)?;
+    let md = table(args, &scene, &reference, &rows);
+    let md_path = args.out.with_extension("md");
+    std::fs::write(&md_path, &md).with_context(|| format!("cannot write {}", md_path.display()))?;
+    println!("{md}");
+    println!(
+        "chart: {} and {}; table: {}",
+        args.out.display(),
+        png_path.display(),
+        md_path.display()
+    );
+    Ok(())
+}
+
+/// The request's scene with every `--every`-th epoch, and the request's file stem.
+fn load(args: &TradeoffArgs) -> anyhow::Result<(Scene, String)> {
     let text = std::fs::read_to_string(&args.request)
         .with_context(|| format!("cannot read {}", args.request.display()))?;
     let full = Scene::from_json(&text, &Limits::unlimited())
@@ -71,7 +100,12 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         scene.epochs.len(),
         scene.mesh.triangles.len()
     );
+    Ok((scene, name))
+}
 
+/// The reference run (the finest adaptive run, or the image method), checked against the
+/// other on a subset of the epochs; the agreement printed.
+fn reference(args: &TradeoffArgs, scene: &Scene) -> Reference {
     let finest = Setting::Adaptive {
         tolerance: args.reference_tolerance,
     };
@@ -82,11 +116,11 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
     let image_reference = args.reference == "image";
     let (reference, check_scene, check_setting) = if image_reference {
         // every epoch by image; the finest adaptive run is checked on all of them
-        (methods::run(&scene, fine_image, 0.0), scene.clone(), finest)
+        (methods::run(scene, fine_image, 0.0), scene.clone(), finest)
     } else {
         (
-            methods::run(&scene, finest, 0.0),
-            every_nth(&scene, args.check_every),
+            methods::run(scene, finest, 0.0),
+            every_nth(scene, args.check_every),
             fine_image,
         )
     };
@@ -108,10 +142,19 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         agreement.rms
     );
     eprintln!("{check_line}");
+    Reference {
+        run: reference,
+        label: reference_label,
+        image: image_reference,
+        check_line,
+    }
+}
 
+/// Every setting of the sweep run and its errors against `reference`, each printed.
+fn sweep(args: &TradeoffArgs, scene: &Scene, reference: &Run) -> Vec<(Run, methods::Errors)> {
     let mut rows: Vec<(Run, methods::Errors)> = Vec::new();
     for setting in methods::default_sweep(args.quick) {
-        let r = methods::run(&scene, setting, args.min_seconds);
+        let r = methods::run(scene, setting, args.min_seconds);
         let e = methods::errors(&r.irradiance, &reference.irradiance);
         eprintln!(
             "  {:<9} {:<22} max {:.2e}  rms {:.2e}  {:.4} ms/epoch",
@@ -123,10 +166,20 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         );
         rows.push((r, e));
     }
+    rows
+}
 
+/// The chart, SVG at `--out` and PNG beside it (skipped with a message without a font);
+/// the PNG's path.
+fn write_chart(
+    args: &TradeoffArgs,
+    name: &str,
+    scene: &Scene,
+    rows: &[(Run, methods::Errors)],
+) -> anyhow::Result<PathBuf> {
     // One line per method, in the sweep's order.
     let mut lines: Vec<chart::Line> = Vec::new();
-    for (r, e) in &rows {
+    for (r, e) in rows {
         let name = r.setting.name();
         let point = (r.ms_per_epoch, e.max, e.rms);
         match lines.iter_mut().find(|l| l.name == name) {
@@ -151,7 +204,20 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
             .with_context(|| format!("cannot write {}", png_path.display()))?,
         Err(e) => eprintln!("PNG not written: {e}"),
     }
+    Ok(png_path)
+}
 
+/// The table as Markdown: what the errors are against, how to regenerate it, a row per
+/// setting, and auto's speed-up.
+fn table(
+    args: &TradeoffArgs,
+    scene: &Scene,
+    reference: &Reference,
+    rows: &[(Run, methods::Errors)],
+) -> String {
+    let reference_label = &reference.label;
+    let check_line = &reference.check_line;
+    let image_reference = reference.image;
     let mut md = String::new();
     let _ = writeln!(md, "Error against the reference ({reference_label}) per epoch, relative to the epoch's irradiance");
     let _ = writeln!(
@@ -187,7 +253,7 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
         "| method | setting | max error | RMS error | ms/epoch | rays/epoch |"
     );
     let _ = writeln!(md, "|---|---|---|---|---|---|");
-    for (r, e) in &rows {
+    for (r, e) in rows {
         let _ = writeln!(
             md,
             "| {} | {} | {:.2e} | {:.2e} | {:.4} | {:.0} |",
@@ -199,19 +265,10 @@ pub fn run(args: &TradeoffArgs) -> anyhow::Result<()> {
             r.rays as f64 / scene.epochs.len().max(1) as f64
         );
     }
-    if let Some(s) = auto_speedup(&rows) {
+    if let Some(s) = auto_speedup(rows) {
         let _ = writeln!(md, "\n{s}");
     }
-    let md_path = args.out.with_extension("md");
-    std::fs::write(&md_path, &md).with_context(|| format!("cannot write {}", md_path.display()))?;
-    println!("{md}");
-    println!(
-        "chart: {} and {}; table: {}",
-        args.out.display(),
-        png_path.display(),
-        md_path.display()
-    );
-    Ok(())
+    md
 }
 
 /// The speed-up of `auto` over `adaptive` at equal error: for `auto` at tolerance 1e-3

@@ -1,6 +1,7 @@
 //! Fitted parameters: their bounds, the change of variables that keeps the solver inside
 //! them, and how results are reported.
 
+use crate::scene::ValidationError;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use utoipa::ToSchema;
@@ -82,6 +83,19 @@ impl Bound {
             _ => "any value".into(),
         }
     }
+}
+
+/// Checks a value given for a parameter (a BRDF fit's fixed value, a light-curve fit's
+/// start, a `sample-brdf` parameter): a finite number within `bound`, else an error on
+/// `field` naming the range, "`v` is out of range [lo, hi]".
+pub fn check_in_bound(field: String, v: f64, bound: Bound) -> Result<(), ValidationError> {
+    if !v.is_finite() || !bound.contains(v) {
+        return Err(ValidationError::new(
+            field,
+            format!("{v} is out of range {}", bound.describe()),
+        ));
+    }
+    Ok(())
 }
 
 /// A value with a name, ordered as the model lists its parameters.

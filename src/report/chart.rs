@@ -14,6 +14,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters_backend::text_anchor::{HPos, VPos};
 use plotters_backend::{BackendColor, BackendCoord, BackendTextStyle, DrawingErrorKind};
+use std::ops::Range;
 
 /// One method's points: (ms per epoch, max relative error, RMS relative error).
 #[derive(Debug, Clone)]
@@ -37,6 +38,9 @@ const PALETTE: [RGBColor; 6] = [
 /// Chart size in pixels (PNG at this size; SVG in user units).
 pub const SIZE: (u32, u32) = (960, 600);
 
+/// The chart's coordinates: time per epoch (ms) and relative error, both log.
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
 /// Draws the chart onto `root`; `k` scales every length (2 for the supersampled PNG).
 fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
@@ -50,6 +54,34 @@ where
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     let kf = k as f64;
     root.fill(&WHITE).map_err(e)?;
+    let (x_range, y_range) = ranges(lines)?;
+    let font = |px: u32| ("sans-serif", (px * k) as f64);
+    let mut chart = axes(root, title, x_range, y_range, k)?;
+    for (i, line) in lines.iter().enumerate() {
+        draw_line(&mut chart, PALETTE[i % PALETTE.len()], line, k)?;
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(font(14))
+        .draw()
+        .map_err(e)?;
+    let note = "solid, filled: max error over epochs;  dashed, open: RMS error;  errors below 1e-7 (exact: 0) drawn at 1e-7";
+    root.draw(&Text::new(
+        note,
+        ((80.0 * kf) as i32, (SIZE.1 as f64 * kf - 16.0 * kf) as i32),
+        font(12).into_font().color(&RGBColor(80, 80, 80)),
+    ))
+    .map_err(e)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// The axes' ranges: the points' times and errors (errors at least [`ERROR_FLOOR`]) with
+/// a margin; an error when there is no point.
+fn ranges(lines: &[Line]) -> Result<(Range<f64>, Range<f64>), String> {
     let all = lines.iter().flat_map(|l| l.points.iter());
     let (mut t0, mut t1, mut e0, mut e1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for &(t, mx, rms) in all {
@@ -66,6 +98,21 @@ where
     }
     let x_range = (t0 / 2.0).max(1e-6)..(t1 * 2.0);
     let y_range = (e0 / 3.0)..(e1 * 3.0).max(e0 * 10.0);
+    Ok((x_range, y_range))
+}
+
+/// The caption, the log axes with their labels and the grid.
+fn axes<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    x_range: Range<f64>,
+    y_range: Range<f64>,
+    k: u32,
+) -> Result<Chart<'a, DB>, String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     let font = |px: u32| ("sans-serif", (px * k) as f64);
     let mut chart = ChartBuilder::on(root)
         .caption(title, font(20))
@@ -91,63 +138,59 @@ where
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(e)?;
-    for (i, line) in lines.iter().enumerate() {
-        let colour = PALETTE[i % PALETTE.len()];
-        let solid = colour.stroke_width(2 * k);
-        let max: Vec<(f64, f64)> = line
-            .points
-            .iter()
-            .map(|p| (p.0, p.1.max(ERROR_FLOOR)))
-            .collect();
-        let rms: Vec<(f64, f64)> = line
-            .points
-            .iter()
-            .map(|p| (p.0, p.2.max(ERROR_FLOOR)))
-            .collect();
-        chart
-            .draw_series(LineSeries::new(max.clone(), solid))
-            .map_err(e)?
-            .label(line.name.clone())
-            .legend(move |(x, y)| {
-                PathElement::new(
-                    vec![(x, y), (x + 20 * k as i32, y)],
-                    colour.stroke_width(2 * k),
-                )
-            });
-        chart
-            .draw_series(max.iter().map(|&p| Circle::new(p, 4 * k, colour.filled())))
-            .map_err(e)?;
-        chart
-            .draw_series(DashedLineSeries::new(
-                rms.clone(),
-                6 * k,
-                4 * k,
-                colour.stroke_width(k),
-            ))
-            .map_err(e)?;
-        chart
-            .draw_series(
-                rms.iter()
-                    .map(|&p| Circle::new(p, 3 * k, colour.stroke_width(k))),
-            )
-            .map_err(e)?;
-    }
+    Ok(chart)
+}
+
+/// One method in `colour`: its max errors a solid line with filled dots (and its legend
+/// entry), its RMS errors a dashed line with open circles.
+fn draw_line<DB: DrawingBackend>(
+    chart: &mut Chart<'_, DB>,
+    colour: RGBColor,
+    line: &Line,
+    k: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let solid = colour.stroke_width(2 * k);
+    let max: Vec<(f64, f64)> = line
+        .points
+        .iter()
+        .map(|p| (p.0, p.1.max(ERROR_FLOOR)))
+        .collect();
+    let rms: Vec<(f64, f64)> = line
+        .points
+        .iter()
+        .map(|p| (p.0, p.2.max(ERROR_FLOOR)))
+        .collect();
     chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(font(14))
-        .draw()
+        .draw_series(LineSeries::new(max.clone(), solid))
+        .map_err(e)?
+        .label(line.name.clone())
+        .legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + 20 * k as i32, y)],
+                colour.stroke_width(2 * k),
+            )
+        });
+    chart
+        .draw_series(max.iter().map(|&p| Circle::new(p, 4 * k, colour.filled())))
         .map_err(e)?;
-    let note = "solid, filled: max error over epochs;  dashed, open: RMS error;  errors below 1e-7 (exact: 0) drawn at 1e-7";
-    root.draw(&Text::new(
-        note,
-        ((80.0 * kf) as i32, (SIZE.1 as f64 * kf - 16.0 * kf) as i32),
-        font(12).into_font().color(&RGBColor(80, 80, 80)),
-    ))
-    .map_err(e)?;
-    root.present().map_err(e)?;
+    chart
+        .draw_series(DashedLineSeries::new(
+            rms.clone(),
+            6 * k,
+            4 * k,
+            colour.stroke_width(k),
+        ))
+        .map_err(e)?;
+    chart
+        .draw_series(
+            rms.iter()
+                .map(|&p| Circle::new(p, 3 * k, colour.stroke_width(k))),
+        )
+        .map_err(e)?;
     Ok(())
 }
 

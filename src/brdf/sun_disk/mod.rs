@@ -23,10 +23,24 @@
 //! - While the Earth hides part of the disk (penumbra), a finer hexagonal pattern
 //!   ([`PENUMBRA_RINGS`]) with its hidden points dropped averages over the visible part
 //!   only ([`SunLight::eclipsed`]).
+//!
+//! Where things are: `cubature` (the points of every rule on the unit disk, and their
+//! directions on the sky), `rule` (which rule an epoch gets), `penumbra` (the Earth's disk
+//! and the rule while it hides part of the Sun's), `blob` (one direction of a rule, its
+//! lobe widened and squeezed); here the constants, [`SunLight`] and the `projected`
+//! functions.
+
+mod blob;
+mod cubature;
+mod penumbra;
+mod rule;
+
+pub use penumbra::EarthDisk;
 
 use super::{Brdf, Directions, Fixed, Frame};
-use crate::radiometry::earth::orthonormal_basis;
+use blob::{sample, widened, Sample};
 use glam::DVec3;
+use rule::disk_rule;
 
 /// Lobes with an RMS slope above this many solar radii see the Sun as a point. A point
 /// Sun misses the disk's blur of the glint's peak by ρ²/(8δ²) of it (a Beckmann lobe
@@ -74,111 +88,6 @@ const LEAST_COS_HALF_PHASE: f64 = 0.01;
 /// disk's edge, measured in the half vector (so twice that in the Sun's direction).
 const TAIL: f64 = 6.0;
 
-/// A point of a rule on the unit disk: offsets in units of the disk radius, and weight
-/// (a rule's weights sum to 1).
-type DiskPoint = (f64, f64, f64);
-
-/// The spacing of a hexagonal pattern of `rings` rings on the unit disk, chosen so that
-/// each point stands for an equal share of the disk's area (π = N·(√3/2)·d²).
-fn hex_spacing(rings: usize) -> f64 {
-    let n = 1 + 3 * rings * (rings + 1);
-    (2.0 * std::f64::consts::PI / (n as f64 * 3f64.sqrt())).sqrt()
-}
-
-/// Every point of a hexagonal lattice within `rings` rings of the centre, spaced by
-/// [`hex_spacing`], with equal weights.
-fn hex_pattern(rings: usize) -> Vec<DiskPoint> {
-    let d = hex_spacing(rings);
-    let k = rings as i32;
-    let n = 1 + 3 * rings * (rings + 1);
-    let w = 1.0 / n as f64;
-    let mut p = Vec::with_capacity(n);
-    for i in -k..=k {
-        for j in -k..=k {
-            // axial hex coordinates: inside ring k when the third coordinate is too
-            if (i + j).abs() <= k {
-                let x = d * (i as f64 + 0.5 * j as f64);
-                let y = d * (0.75f64.sqrt() * j as f64);
-                p.push((x, y, w));
-            }
-        }
-    }
-    debug_assert_eq!(p.len(), n);
-    p
-}
-
-/// The hexagonal pattern of [`RINGS`] rings ([`HEX_POINTS`] points).
-fn hex_points() -> &'static [DiskPoint] {
-    static POINTS: std::sync::OnceLock<Vec<DiskPoint>> = std::sync::OnceLock::new();
-    POINTS.get_or_init(|| hex_pattern(RINGS))
-}
-
-/// The hexagonal pattern of [`PENUMBRA_RINGS`] rings.
-fn penumbra_points() -> &'static [DiskPoint] {
-    static POINTS: std::sync::OnceLock<Vec<DiskPoint>> = std::sync::OnceLock::new();
-    POINTS.get_or_init(|| hex_pattern(PENUMBRA_RINGS))
-}
-
-/// Radon's 7-point rule for the disk, exact for polynomials of degree 5 (Stroud's
-/// S2:5-1): the centre with weight 1/4 and six points at radius √(2/3), 60° apart, with
-/// 1/8 each.
-fn radon_points() -> Vec<DiskPoint> {
-    let r = (2.0f64 / 3.0).sqrt();
-    let mut p = vec![(0.0, 0.0, 0.25)];
-    p.extend((0..6).map(|k| {
-        let (s, c) = (k as f64 * std::f64::consts::FRAC_PI_3).sin_cos();
-        (r * c, r * s, 0.125)
-    }));
-    p
-}
-
-/// A product rule for the disk: Gauss–Legendre in u = r² (the disk's area is uniform in
-/// u), exact for polynomials of degree 2·`rings` − 1 in it, times `angles` even angles
-/// (exact for harmonics below that order), alternate rings turned by half a step.
-fn polar_points(rings: usize, angles: usize) -> Vec<DiskPoint> {
-    // nodes on [−1, 1] and weights (summing to 2)
-    let gauss: &[(f64, f64)] = match rings {
-        3 => &[
-            (-0.774_596_669_241_483_4, 5.0 / 9.0),
-            (0.0, 8.0 / 9.0),
-            (0.774_596_669_241_483_4, 5.0 / 9.0),
-        ],
-        4 => &[
-            (-0.861_136_311_594_052_6, 0.347_854_845_137_453_8),
-            (-0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-            (0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-            (0.861_136_311_594_052_6, 0.347_854_845_137_453_8),
-        ],
-        _ => unreachable!("SMOOTH_RULES uses 3 or 4 rings"),
-    };
-    let mut p = Vec::with_capacity(rings * angles);
-    for (i, &(x, w)) in gauss.iter().enumerate() {
-        let r = (0.5 * (x + 1.0)).sqrt();
-        for j in 0..angles {
-            let t = (j as f64 + 0.5 * (i % 2) as f64) / angles as f64 * std::f64::consts::TAU;
-            p.push((r * t.cos(), r * t.sin(), 0.5 * w / angles as f64));
-        }
-    }
-    p
-}
-
-/// The points of each of [`SMOOTH_RULES`], in its order.
-fn smooth_rules() -> &'static [Vec<DiskPoint>] {
-    static RULES: std::sync::OnceLock<Vec<Vec<DiskPoint>>> = std::sync::OnceLock::new();
-    RULES.get_or_init(|| {
-        SMOOTH_RULES
-            .iter()
-            .map(|&(_, rings, angles)| {
-                if rings == 0 {
-                    radon_points()
-                } else {
-                    polar_points(rings, angles)
-                }
-            })
-            .collect()
-    })
-}
-
 /// f·cosθi·cosθr (sr⁻¹) for sunlight from a disk of angular radius `sun_radius` (rad)
 /// centred on `l`, averaged over the disk, towards `v`. Equals `brdf.projected(frame, l, v)`
 /// for a point Sun (`sun_radius` = 0), for materials without a narrow lobe, and away
@@ -199,22 +108,6 @@ pub fn projected_eclipsed(
     earth: Option<EarthDisk>,
 ) -> f64 {
     projected_with(brdf, frame, l, v, sun_radius, earth, BLOB)
-}
-
-/// The Earth's disk on the object's sky: the unit direction of its centre and its
-/// angular radius (rad). What hides part of the Sun in penumbra (docs/physics.md §4).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EarthDisk {
-    pub dir: DVec3,
-    pub radius: f64,
-}
-
-impl EarthDisk {
-    /// Whether the direction `d` (unit) lies behind the Earth.
-    #[inline]
-    fn hides(&self, d: DVec3) -> bool {
-        angle(d, self.dir) < self.radius
-    }
 }
 
 /// Angle between unit vectors, rad (atan2: accurate near 0 and π).
@@ -254,59 +147,6 @@ struct Disk {
     spec: Brdf,
     /// Each direction of the rule, with its weight and stretch.
     spec_dirs: Vec<Sample>,
-}
-
-/// One direction on the disk.
-#[derive(Debug, Clone)]
-struct Sample {
-    /// Weight (the weights of a rule sum to 1).
-    w: f64,
-    dirs: Directions,
-    /// Unit half vector of this direction and the observer.
-    h: DVec3,
-    /// Unit vector across the plane of this direction and the observer (l_k × v).
-    across: DVec3,
-    /// δ_in/δ_out (≤ 1): how much the lobe's offset across the plane is scaled; 1 leaves
-    /// the lobe as the (widened) model has it.
-    squeeze: f64,
-}
-
-impl Sample {
-    /// w·f·cosθi·cosθr of this direction on a face (`cr` = n·v).
-    #[inline]
-    fn projected_given(&self, spec: &Brdf, frame: &Frame, cr: f64) -> f64 {
-        if self.squeeze >= 1.0 {
-            return self.w * self.dirs.projected_given(spec, frame, cr);
-        }
-        if cr <= 0.0 {
-            return 0.0;
-        }
-        // the half vector turned towards n across the plane by (1 − q) of n's angle a
-        // from it that way, so the lobe sees that angle scaled by q (an angle, not a
-        // tangent offset: near phase 180° the blobs span radians along the terminator);
-        // and the light moved with it (the direction that h mirrors into v), so the blob
-        // is lit as from where it lies
-        let n = frame.n;
-        let a = n.dot(self.across).atan2(n.dot(self.h));
-        let (sa, ca) = ((1.0 - self.squeeze) * a).sin_cos();
-        let h = self.h * ca + self.across * sa;
-        let v = self.dirs.view();
-        let l = 2.0 * h.dot(v) * h - v;
-        let ci = n.dot(l);
-        if ci <= 0.0 {
-            return 0.0;
-        }
-        self.w * self.squeeze * self.dirs.model_moved(spec, frame, ci, cr, l, h)
-    }
-}
-
-/// The rule chosen for one epoch: its directions with weights (summing to 1 over the
-/// visible part of the disk), the slope its lobes get in the Sun–observer plane, and
-/// the blob's slope (rad, in the half vector) when it is a hexagonal pattern.
-struct Rule {
-    dirs: Vec<(f64, DVec3)>,
-    slope_in: f64,
-    blob: Option<f64>,
 }
 
 impl<'a> SunLight<'a> {
@@ -390,42 +230,6 @@ impl<'a> SunLight<'a> {
     }
 }
 
-/// One direction `d` of weight `w` for the specular part `spec` (widened to the blob in
-/// the Sun–observer plane), with its stretch across that plane for a hexagonal pattern
-/// of blob slope `blob` (rad).
-fn sample(
-    spec: &Brdf,
-    w: f64,
-    d: DVec3,
-    v: DVec3,
-    slope: f64,
-    blob: Option<f64>,
-    sun_radius: f64,
-) -> Sample {
-    let dirs = Directions::new(spec, d, v);
-    let plain = Sample {
-        w,
-        dirs,
-        h: DVec3::ZERO,
-        across: DVec3::ZERO,
-        squeeze: 1.0,
-    };
-    let Some(blob) = blob else {
-        return plain;
-    };
-    let (Some(h), Some(across)) = (super::half_vector(d, v), d.cross(v).try_normalize()) else {
-        return plain;
-    };
-    let cos_half = (0.5 * (d + v).length()).max(LEAST_COS_HALF_PHASE * sun_radius);
-    let squeeze = slope.max(blob) / slope.max(blob / cos_half);
-    Sample {
-        h,
-        across,
-        squeeze,
-        ..plain
-    }
-}
-
 impl Disk {
     /// The disk's average near the glint, sr⁻¹.
     #[inline]
@@ -437,85 +241,6 @@ impl Disk {
             .sum();
         self.diffuse_dirs.projected_given(&self.diffuse, frame, cr) + sum
     }
-}
-
-/// The rule for a lobe of RMS slope `slope` against a disk of angular radius
-/// `sun_radius` (rad) about `l`, seen from `v`, perhaps partly hidden by `earth`; `blob`
-/// is the hexagonal pattern's least slope in solar radii. `None` when the Earth hides
-/// every direction of the rule.
-///
-/// Across the disk the lobe is narrower than its slope says when the phase angle g is
-/// large: moving the Sun by β in the plane of `l` and `v` turns the half vector by β/2,
-/// but out of that plane by β/(2·cos(g/2)). What the rule must resolve is the narrow
-/// width, slope·cos(g/2) (a quarter of the slope at g = 151°).
-///
-/// With part of the disk behind the Earth the finer hexagonal pattern of
-/// [`PENUMBRA_RINGS`] rings serves whatever the lobe, its hidden points dropped and the
-/// others' weights renormalised to 1.
-fn disk_rule(
-    slope: f64,
-    l: DVec3,
-    v: DVec3,
-    sun_radius: f64,
-    earth: Option<EarthDisk>,
-    blob: f64,
-) -> Option<Rule> {
-    if let Some(earth) = earth.filter(|e| angle(l, e.dir) < sun_radius + e.radius) {
-        let blob = blob * sun_radius * hex_spacing(PENUMBRA_RINGS) / hex_spacing(RINGS);
-        let dirs: Vec<(f64, DVec3)> = disk_directions(penumbra_points(), l, sun_radius)
-            .filter(|&(_, d)| !earth.hides(d))
-            .collect();
-        let total: f64 = dirs.iter().map(|p| p.0).sum();
-        if dirs.is_empty() {
-            return None;
-        }
-        return Some(Rule {
-            dirs: dirs.into_iter().map(|(w, d)| (w / total, d)).collect(),
-            slope_in: slope.max(blob),
-            blob: Some(blob),
-        });
-    }
-    let width = slope * 0.5 * (l + v).length() / sun_radius;
-    let (points, blob) = match SMOOTH_RULES.iter().position(|r| width >= r.0) {
-        Some(k) => (&smooth_rules()[k][..], None),
-        None => (hex_points(), Some(blob * sun_radius)),
-    };
-    Some(Rule {
-        dirs: disk_directions(points, l, sun_radius).collect(),
-        slope_in: blob.map_or(slope, |b| slope.max(b)),
-        blob,
-    })
-}
-
-/// The specular part `spec` (RMS slope `slope`) with its lobe widened to `to` where
-/// narrower.
-fn widened(spec: Brdf, slope: f64, to: f64) -> Brdf {
-    if to > slope {
-        spec.widened(to)
-    } else {
-        spec
-    }
-}
-
-/// The rule's weights and directions on the disk of angular radius `sun_radius` (rad)
-/// about `l`.
-fn disk_directions(
-    rule: &'static [DiskPoint],
-    l: DVec3,
-    sun_radius: f64,
-) -> impl Iterator<Item = (f64, DVec3)> {
-    let (a, b) = orthonormal_basis(l);
-    rule.iter().map(move |&(x, y, w)| {
-        // the point at angle r·ρ from the centre towards (x, y): exact on the sphere
-        let r = (x * x + y * y).sqrt();
-        let d = if r == 0.0 {
-            l
-        } else {
-            let (sr, cr) = (r * sun_radius).sin_cos();
-            l * cr + (a * x + b * y) * (sr / r)
-        };
-        (w, d)
-    })
 }
 
 /// [`projected_eclipsed`] with the smallest lobe slope per direction of the hexagonal
@@ -552,57 +277,7 @@ pub fn projected_with(
 mod tests {
     use super::*;
 
-    #[test]
-    fn hex_points_fill_the_disk_evenly() {
-        let p = hex_points();
-        assert_eq!(p.len(), HEX_POINTS);
-        // mean at the centre, mean square r² = 1/2 of a uniform unit disk within 10 %
-        let (mx, my) = p.iter().fold((0.0, 0.0), |a, q| (a.0 + q.0, a.1 + q.1));
-        assert!(mx.abs() < 1e-12 && my.abs() < 1e-12);
-        let r2 = p.iter().map(|q| q.0 * q.0 + q.1 * q.1).sum::<f64>() / HEX_POINTS as f64;
-        assert!((r2 - 0.5).abs() < 0.05, "mean r² {r2}");
-        assert!(p.iter().all(|q| q.0.hypot(q.1) < 1.0));
-        assert!((p.iter().map(|q| q.2).sum::<f64>() - 1.0).abs() < 1e-12);
-    }
-
-    #[test]
-    fn smooth_rules_integrate_the_disk_to_their_degree() {
-        // Every monomial xⁱyʲ up to the rule's degree averages over the unit disk to
-        // 2(i−1)!!(j−1)!!/((i+j+2)(i+j)!!) for i, j even, else 0. Radon's rule has
-        // degree 5; a product rule min(2·rings·2 − 1, angles − 1) (Gauss in r² exact to
-        // u^(2·rings−1), even angles to harmonics below their number).
-        let double_factorial = |n: i32| (1..=n).rev().step_by(2).product::<i32>().max(1) as f64;
-        let exact = |i: i32, j: i32| {
-            if i % 2 == 1 || j % 2 == 1 {
-                0.0
-            } else {
-                2.0 * double_factorial(i - 1) * double_factorial(j - 1)
-                    / ((i + j + 2) as f64 * double_factorial(i + j))
-            }
-        };
-        for (rule, &(_, rings, angles)) in smooth_rules().iter().zip(&SMOOTH_RULES) {
-            let degree = if rings == 0 {
-                5
-            } else {
-                (4 * rings - 1).min(angles - 1) as i32
-            };
-            assert!((rule.iter().map(|q| q.2).sum::<f64>() - 1.0).abs() < 1e-14);
-            assert!(rule.iter().all(|q| q.0.hypot(q.1) < 1.0));
-            for i in 0..=degree {
-                for j in 0..=degree - i {
-                    let m: f64 = rule
-                        .iter()
-                        .map(|&(x, y, w)| w * x.powi(i) * y.powi(j))
-                        .sum();
-                    let e = exact(i, j);
-                    assert!(
-                        (m - e).abs() < 1e-14,
-                        "rule {rings}×{angles}: x^{i} y^{j}: {m} vs {e}"
-                    );
-                }
-            }
-        }
-    }
+    use crate::radiometry::earth::orthonormal_basis;
 
     /// The average of `brdf.projected` over the disk by a fine polar midpoint grid: the
     /// reference the rules are held to.

@@ -1,0 +1,52 @@
+//! The rule chosen for one epoch: which points of which rule average the lobe over the
+//! disk, given the lobe's width across it and the Earth.
+
+use super::cubature::{disk_directions, hex_points, smooth_rules};
+use super::penumbra::{penumbra_rule, EarthDisk};
+use super::{angle, SMOOTH_RULES};
+use glam::DVec3;
+
+/// The rule chosen for one epoch: its directions with weights (summing to 1 over the
+/// visible part of the disk), the slope its lobes get in the Sun–observer plane, and
+/// the blob's slope (rad, in the half vector) when it is a hexagonal pattern.
+pub(super) struct Rule {
+    pub(super) dirs: Vec<(f64, DVec3)>,
+    pub(super) slope_in: f64,
+    pub(super) blob: Option<f64>,
+}
+
+/// The rule for a lobe of RMS slope `slope` against a disk of angular radius
+/// `sun_radius` (rad) about `l`, seen from `v`, perhaps partly hidden by `earth`; `blob`
+/// is the hexagonal pattern's least slope in solar radii. `None` when the Earth hides
+/// every direction of the rule.
+///
+/// Across the disk the lobe is narrower than its slope says when the phase angle g is
+/// large: moving the Sun by β in the plane of `l` and `v` turns the half vector by β/2,
+/// but out of that plane by β/(2·cos(g/2)). What the rule must resolve is the narrow
+/// width, slope·cos(g/2) (a quarter of the slope at g = 151°).
+///
+/// With part of the disk behind the Earth the finer hexagonal pattern of
+/// [`PENUMBRA_RINGS`](super::PENUMBRA_RINGS) rings serves whatever the lobe, its hidden
+/// points dropped and the others' weights renormalised to 1 ([`penumbra_rule`]).
+pub(super) fn disk_rule(
+    slope: f64,
+    l: DVec3,
+    v: DVec3,
+    sun_radius: f64,
+    earth: Option<EarthDisk>,
+    blob: f64,
+) -> Option<Rule> {
+    if let Some(earth) = earth.filter(|e| angle(l, e.dir) < sun_radius + e.radius) {
+        return penumbra_rule(slope, l, sun_radius, earth, blob);
+    }
+    let width = slope * 0.5 * (l + v).length() / sun_radius;
+    let (points, blob) = match SMOOTH_RULES.iter().position(|r| width >= r.0) {
+        Some(k) => (&smooth_rules()[k][..], None),
+        None => (hex_points(), Some(blob * sun_radius)),
+    };
+    Some(Rule {
+        dirs: disk_directions(points, l, sun_radius).collect(),
+        slope_in: blob.map_or(slope, |b| slope.max(b)),
+        blob,
+    })
+}

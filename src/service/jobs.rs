@@ -15,6 +15,7 @@ use super::limits::{ServiceLimits, Slots};
 use super::metrics::Metrics;
 pub use super::record::{JobRecord, JobState};
 use super::store::{Store, StoreError};
+use super::threads::run_blocking;
 use crate::integrate::{Cancelled, Progress};
 use crate::scene::{validate, Scene};
 use serde::{Deserialize, Serialize};
@@ -187,8 +188,9 @@ impl Jobs {
         }
         self.room_for_a_job()?; // before the parse: a full queue costs the client nothing
         let me = self.clone();
-        let outcome =
-            tokio::task::spawn_blocking(move || -> Result<(JobStatus, bool), ApiError> {
+        let outcome = run_blocking(
+            "validating the job",
+            move || -> Result<(JobStatus, bool), ApiError> {
                 let text = std::str::from_utf8(&body)
                     .map_err(|_| ApiError::bad_request("request body is not UTF-8"))?;
                 let request = validate::parse_request(text)?;
@@ -228,9 +230,9 @@ impl Jobs {
                     return Err(ApiError::from(e));
                 }
                 Ok((status, false))
-            })
-            .await
-            .map_err(|e| ApiError::from_join("validating the job", e))??;
+            },
+        )
+        .await??;
         let (status, replayed) = outcome;
         if replayed {
             return Ok((status, true));
@@ -385,9 +387,8 @@ impl Jobs {
         }
         let store = self.store.clone();
         let key = id.to_string();
-        tokio::task::spawn_blocking(move || store.result(&key))
-            .await
-            .map_err(|e| ApiError::from_join("reading the result", e))?
+        run_blocking("reading the result", move || store.result(&key))
+            .await?
             .map_err(ApiError::from)?
             // Removed by expiry between the two looks.
             .ok_or_else(|| no_such_job(id))
@@ -416,15 +417,14 @@ impl Jobs {
         let me = self.clone();
         let key = id.to_string();
         let was_cancelled = cancelled.is_some();
-        tokio::task::spawn_blocking(move || {
+        run_blocking("removing the job", move || {
             if was_cancelled {
                 me.persist(&key, None)
             } else {
                 me.remove(&key)
             }
         })
-        .await
-        .map_err(|e| ApiError::from_join("removing the job", e))?
+        .await?
         .map_err(ApiError::from)?;
         Ok(match cancelled {
             Some(s) => Deleted::Cancelled(s),

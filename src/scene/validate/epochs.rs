@@ -170,3 +170,99 @@ fn parse_time(s: &str) -> Result<f64, String> {
         format!("`{s}` is neither seconds nor an ISO 8601 UTC time (e.g. 2026-11-22T04:50:00Z)")
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::{check, check_with, refused};
+    use crate::scene::validate::{Limits, ValidationError};
+    use glam::DVec3;
+    use serde_json::json;
+
+    #[test]
+    fn a_zero_sun_vector_is_named() {
+        let e = refused(|v| v["epochs"][0]["sun"] = json!([0.0, 0.0, 0.0]));
+        assert_eq!(
+            e,
+            ValidationError::new("epochs[0].sun", "must not be the zero vector")
+        );
+    }
+
+    #[test]
+    fn epochs_are_required_and_counted() {
+        let e = refused(|v| {
+            v.as_object_mut().unwrap().remove("epochs");
+        });
+        assert_eq!(
+            e,
+            ValidationError::new("epochs", "is required (or give `geometry`)")
+        );
+        let e = refused(|v| v["epochs"] = json!([]));
+        assert_eq!(e.message, "must list at least one epoch");
+        let limits = Limits {
+            max_epochs: 1,
+            ..Limits::default()
+        };
+        let two = |v: &mut serde_json::Value| {
+            let e = v["epochs"][0].clone();
+            v["epochs"] = json!([e.clone(), e]);
+        };
+        let e = check_with(two, &limits).unwrap_err();
+        assert_eq!(
+            e,
+            ValidationError::new("epochs", "too many epochs: 2 (limit 1)")
+        );
+        assert!(e.is_limit());
+    }
+
+    #[test]
+    fn the_observer_must_be_outside_the_object() {
+        let e = refused(|v| v["epochs"][0]["observer"] = json!([0.5, 0.5, 0.1]));
+        assert_eq!(e.field, "epochs[0].observer");
+        assert!(e.message.contains("within its bounding radius"), "{e}");
+    }
+
+    #[test]
+    fn an_earthshine_model_needs_the_earth() {
+        let e = refused(|v| v["illumination"] = json!({"earthshine": "sphere"}));
+        assert_eq!(e.field, "epochs[0].earth");
+        let scene = check(|v| {
+            v["illumination"] = json!({"earthshine": "sphere"});
+            v["epochs"][0]["earth"] = json!([0.0, 0.0, -7.0e6]);
+        })
+        .expect("valid");
+        assert_eq!(scene.epochs[0].earth, Some(DVec3::new(0.0, 0.0, -7.0e6)));
+    }
+
+    #[test]
+    fn an_attitude_turns_the_vectors_into_the_body_frame() {
+        // 90° about +z, body → inertial: the inertial +x is the body's -y
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let scene = check(|v| {
+            v["epochs"][0]["sun"] = json!([1.0, 0.0, 1.0]);
+            v["epochs"][0]["attitude"] = json!([h, 0.0, 0.0, h]);
+        })
+        .expect("valid");
+        let sun = scene.epochs[0].sun;
+        assert!((sun - DVec3::new(0.0, -h, h)).length() < 1e-12, "{sun}");
+        let e = refused(|v| v["epochs"][0]["attitude"] = json!([1.0, 1.0, 0.0, 0.0]));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "epochs[0].attitude",
+                "must be a unit quaternion [w, x, y, z]"
+            )
+        );
+    }
+
+    #[test]
+    fn a_time_is_seconds_or_iso_utc() {
+        let scene = check(|v| v["epochs"][0]["t"] = json!("2026-11-22T04:50:00Z")).expect("valid");
+        assert_eq!(scene.epochs[0].t, 1_795_323_000.0);
+        let e = refused(|v| v["epochs"][0]["t"] = json!("yesterday"));
+        assert_eq!(e.field, "epochs[0].t");
+        assert!(
+            e.message.starts_with("`yesterday` is neither seconds"),
+            "{e}"
+        );
+    }
+}

@@ -107,3 +107,65 @@ pub(super) fn fidelity(
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::{check, check_with, refused};
+    use crate::scene::validate::{Limits, ValidationError};
+    use crate::scene::Method;
+    use serde_json::json;
+
+    #[test]
+    fn tolerance_and_method_are_checked() {
+        let e = refused(|v| v["tolerance"] = json!(1.0));
+        assert_eq!(
+            e,
+            ValidationError::new("tolerance", "must be between 1e-9 and 0.5, got 1")
+        );
+        let e = refused(|v| v["method"] = json!("guess"));
+        assert_eq!(e.field, "method");
+        assert!(e.message.starts_with("unknown method `guess`"), "{e}");
+        let scene = check(|_| {}).expect("valid");
+        assert_eq!((scene.method, scene.tolerance), (Method::Auto, 1e-3));
+    }
+
+    #[test]
+    fn a_setting_of_another_method_is_refused() {
+        let e = refused(|v| v["image_size"] = json!(64));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "image_size",
+                "applies only to \"method\": \"image\" (the request uses `auto`)"
+            )
+        );
+        let scene = check(|v| {
+            v["method"] = json!("image");
+            v["image_size"] = json!(64);
+        })
+        .expect("valid");
+        assert_eq!((scene.image_size, scene.image_samples), (64, 4));
+    }
+
+    #[test]
+    fn centroid_subdivisions_are_bounded_by_the_triangle_limit() {
+        let limits = Limits {
+            max_triangles: 16,
+            ..Limits::default()
+        };
+        let subdivide = |k: u32| {
+            move |v: &mut serde_json::Value| {
+                v["method"] = json!("centroid");
+                v["centroid_subdivisions"] = json!(k);
+            }
+        };
+        // 2 triangles × 4² = 32 > 16; × 4 = 8 is within
+        let e = check_with(subdivide(2), &limits).unwrap_err();
+        assert_eq!(e.field, "centroid_subdivisions");
+        assert_eq!(
+            e.message,
+            "too many triangles after 2 subdivisions: 32 (limit 16)"
+        );
+        assert!(check_with(subdivide(1), &limits).is_ok());
+    }
+}

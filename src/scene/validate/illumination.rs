@@ -65,3 +65,56 @@ pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationErro
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::{check, refused};
+    use crate::scene::validate::ValidationError;
+    use crate::scene::EarthshineModel;
+    use serde_json::json;
+
+    #[test]
+    fn a_band_runs_from_short_to_long() {
+        let e = refused(|v| v["illumination"] = json!({"band_um": [0.9, 0.4]}));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "illumination.band_um",
+                "must be [λ1, λ2] in µm with 0 <= λ1 < λ2, got [0.9, 0.4]"
+            )
+        );
+    }
+
+    #[test]
+    fn a_band_with_almost_no_sunlight_is_refused() {
+        let e = refused(|v| {
+            v["illumination"] = json!({"band_um": [0.01, 0.05], "sun_temperature_k": 300.0})
+        });
+        assert_eq!(e.field, "illumination.band_um");
+        assert!(
+            e.message
+                .contains("holds almost none of a 300 K Sun's light"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_earthshine_model_is_named_and_defaults_apply() {
+        let e = refused(|v| v["illumination"] = json!({"earthshine": "moon"}));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "illumination.earthshine",
+                "unknown model `moon`; expected off, seed or sphere"
+            )
+        );
+        let e = refused(|v| v["illumination"] = json!({"earth_albedo": -0.1}));
+        assert_eq!(e.field, "illumination.earth_albedo");
+        let scene = check(|v| v["illumination"] = json!({"earthshine": "off"})).expect("valid");
+        assert_eq!(scene.illumination.earthshine, EarthshineModel::Off);
+        assert_eq!(
+            scene.illumination.band_um,
+            crate::scene::Illumination::default().band_um
+        );
+    }
+}

@@ -112,3 +112,70 @@ fn field_error(
     };
     ValidationError { field, message }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::test_fixtures::minimal_request;
+    use serde_json::json;
+
+    #[test]
+    fn an_unknown_field_is_named_with_its_path() {
+        let mut v = minimal_request();
+        v["object"]["colour"] = json!("red");
+        let e = parse_request(&v.to_string()).unwrap_err();
+        assert_eq!(e.field, "object.colour");
+        assert!(e.message.starts_with("unknown field `colour`"), "{e}");
+        assert!(!e.message.contains(" at line "), "{e}");
+    }
+
+    #[test]
+    fn a_longer_fixed_array_is_a_wrong_value_not_broken_json() {
+        let mut v = minimal_request();
+        v["epochs"][0]["sun"] = json!([0.0, 0.0, 1.0, 2.0]);
+        let e = parse_request(&v.to_string()).unwrap_err();
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "epochs[0].sun",
+                "more elements than this fixed-length array takes"
+            )
+        );
+    }
+
+    #[test]
+    fn the_request_names_a_repeated_field_and_other_bodies_do_not() {
+        let text = minimal_request().to_string();
+        let twice = format!("{{\"tolerance\": 0.1, \"tolerance\": 0.1, {}", &text[1..]);
+        let e = parse_request(&twice).unwrap_err();
+        assert_eq!(e.field, "tolerance");
+        assert!(e.message.starts_with("duplicate field `tolerance`"), "{e}");
+
+        #[derive(Debug, serde::Deserialize)]
+        #[allow(dead_code)]
+        struct Body {
+            a: f64,
+        }
+        let e = parse_json::<Body>(r#"{"a": 1, "a": 2}"#).unwrap_err();
+        assert_eq!(e.field, "");
+        assert!(e.message.starts_with("duplicate field `a`"), "{e}");
+    }
+
+    #[test]
+    fn broken_json_and_data_after_the_body_say_invalid_json() {
+        let e = parse_request("{").unwrap_err();
+        assert!(e.message.starts_with("invalid JSON: EOF"), "{e}");
+        let text = minimal_request().to_string();
+        let e = parse_request(&format!("{text} {{}}")).unwrap_err();
+        assert!(
+            e.message
+                .starts_with("invalid JSON: data after the request ("),
+            "{e}"
+        );
+        let e = parse_json::<serde_json::Value>("{} 1").unwrap_err();
+        assert!(
+            e.message.starts_with("invalid JSON: data after the body ("),
+            "{e}"
+        );
+    }
+}

@@ -197,3 +197,64 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
         ),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::{check, refused};
+    use crate::scene::validate::ValidationError;
+    use serde_json::json;
+
+    #[test]
+    fn a_material_list_needs_one_and_no_name_twice() {
+        let e = refused(|v| v["object"]["materials"] = json!([]));
+        assert_eq!(
+            e,
+            ValidationError::new("object.materials", "must list at least one material")
+        );
+        let e = refused(|v| {
+            let m = v["object"]["materials"][0].clone();
+            v["object"]["materials"] = json!([m.clone(), m]);
+        });
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "object.materials[1].name",
+                "duplicate material name `surface`"
+            )
+        );
+    }
+
+    #[test]
+    fn a_parameter_is_checked_and_named_in_its_material() {
+        let e = refused(|v| v["object"]["materials"][0]["albedo"] = json!(1.5));
+        assert_eq!(e.field, "object.materials[0].albedo");
+        assert_eq!(e.message, "must be between 0 and 1, got 1.5");
+        let e = refused(|v| v["object"]["materials"][0]["kd"] = json!(0.1));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "object.materials[0].kd",
+                "is not a parameter of model `lambert`"
+            )
+        );
+    }
+
+    #[test]
+    fn a_preset_is_found_by_name() {
+        let e = refused(|v| v["object"]["materials"][0] = json!({"name": "s", "preset": "nope"}));
+        assert_eq!(e.field, "object.materials[0].preset");
+        assert!(e.message.starts_with("unknown preset `nope`"), "{e}");
+    }
+
+    #[test]
+    fn a_tangent_is_made_a_unit_vector() {
+        let scene = check(|v| {
+            v["object"]["materials"][0] = json!({
+                "name": "surface", "model": "ashikhmin-shirley",
+                "rd": 0.2, "rs": 0.1, "nu": 10.0, "nv": 100.0, "tangent": [0.0, 2.0, 0.0]
+            })
+        })
+        .expect("valid");
+        assert_eq!(scene.materials[0].tangent, glam::DVec3::Y);
+    }
+}

@@ -272,3 +272,78 @@ fn drop_degenerate(mesh: &mut Mesh) -> Result<(), ValidationError> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::{check, refused};
+    use crate::scene::validate::ValidationError;
+    use serde_json::json;
+
+    #[test]
+    fn a_mesh_has_exactly_one_form() {
+        let e = refused(|v| v["object"]["mesh"]["builtin"] = json!("plate"));
+        assert_eq!(e.field, "object.mesh");
+        assert!(e.message.starts_with("give exactly one of"), "{e}");
+        let e = refused(|v| v["object"]["mesh"]["detail"] = json!("fine"));
+        assert_eq!(e.field, "object.mesh.detail");
+    }
+
+    #[test]
+    fn each_index_is_checked_and_named() {
+        let e = refused(|v| v["object"]["mesh"]["triangles"][1] = json!([0, 2, 9]));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "object.mesh.triangles[1]",
+                "vertex index 9 out of range (there are 4 vertices)"
+            )
+        );
+        let e = refused(|v| v["object"]["mesh"]["material_ids"] = json!([0, 1]));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "object.mesh.material_ids[1]",
+                "material index 1 out of range (there are 1 materials)"
+            )
+        );
+    }
+
+    #[test]
+    fn a_coordinate_beyond_the_limit_is_refused() {
+        let e = refused(|v| {
+            v["object"]["mesh"]["vertices"]
+                .as_array_mut()
+                .unwrap()
+                .push(json!([0.0, 0.0, 2e12]))
+        });
+        assert_eq!(e.field, "object.mesh.vertices[4]");
+    }
+
+    #[test]
+    fn the_same_triangle_twice_is_refused_but_back_to_back_is_kept() {
+        // [1, 2, 0] is [0, 1, 2] with its corners rotated: the same winding
+        let e = refused(|v| {
+            v["object"]["mesh"]["triangles"] = json!([[0, 1, 2], [0, 2, 3], [1, 2, 0]])
+        });
+        assert_eq!(e.field, "object.mesh.triangles[2]");
+        assert!(e.message.contains("as triangles[0]"), "{e}");
+        let scene =
+            check(|v| v["object"]["mesh"]["triangles"] = json!([[0, 1, 2], [0, 2, 3], [0, 2, 1]]))
+                .expect("a thin plate is valid");
+        assert_eq!(scene.mesh.triangles.len(), 3);
+    }
+
+    #[test]
+    fn degenerate_triangles_are_dropped_with_their_material_ids() {
+        let scene =
+            check(|v| v["object"]["mesh"]["triangles"] = json!([[0, 1, 2], [0, 1, 1], [0, 2, 3]]))
+                .expect("valid");
+        assert_eq!(scene.mesh.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(scene.mesh.material_ids.len(), 2);
+        let e = refused(|v| v["object"]["mesh"]["triangles"] = json!([[0, 1, 1]]));
+        assert_eq!(
+            e,
+            ValidationError::new("object.mesh.triangles", "every triangle has zero area")
+        );
+    }
+}

@@ -101,3 +101,49 @@ pub(super) fn thumbnails(
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::{check, refused};
+    use crate::scene::validate::ValidationError;
+    use serde_json::json;
+
+    #[test]
+    fn the_chosen_epochs_are_checked_and_named() {
+        let e = refused(|v| v["thumbnails"] = json!({"every": 0}));
+        assert_eq!(
+            e,
+            ValidationError::new("thumbnails.every", "must be at least 1")
+        );
+        let e = refused(|v| v["thumbnails"] = json!({"epochs": [0, 5]}));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "thumbnails.epochs[1]",
+                "epoch index 5 out of range (there are 1 epochs)"
+            )
+        );
+    }
+
+    #[test]
+    fn size_samples_and_exposure_are_checked() {
+        let e = refused(|v| v["thumbnails"] = json!({"size": 4}));
+        assert_eq!(e.field, "thumbnails.size");
+        let e = refused(|v| v["thumbnails"] = json!({"samples": 17}));
+        assert_eq!(e.field, "thumbnails.samples");
+        let e = refused(|v| v["thumbnails"] = json!({"exposure": "bright"}));
+        assert_eq!(e.field, "thumbnails.exposure");
+        let e = refused(|v| v["thumbnails"] = json!({"exposure": -1.0}));
+        assert_eq!(
+            e,
+            ValidationError::new("thumbnails.exposure", "must be positive, got -1")
+        );
+    }
+
+    #[test]
+    fn an_empty_spec_takes_the_defaults() {
+        let scene = check(|v| v["thumbnails"] = json!({})).expect("valid");
+        let t = scene.thumbnails.expect("thumbnails asked for");
+        assert_eq!((t.size, t.epochs), (128, vec![0]));
+    }
+}

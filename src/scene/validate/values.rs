@@ -62,3 +62,41 @@ pub(super) fn positive(field: &str, v: f64) -> Result<f64, ValidationError> {
     }
     Ok(v)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_vector_needs_a_direction_and_a_usable_length() {
+        let msg = |v| vector("v", v).unwrap_err().message;
+        assert_eq!(msg([0.0; 3]), "must not be the zero vector");
+        assert_eq!(
+            msg([f64::NAN, 0.0, 1.0]),
+            "must have three finite components"
+        );
+        assert!(msg([1e200, 0.0, 0.0]).starts_with("is too long"));
+        assert!(msg([1e-200, 0.0, 0.0]).starts_with("is too short"));
+        assert_eq!(vector("v", [3.0, 4.0, 0.0]), Ok(DVec3::new(3.0, 4.0, 0.0)));
+    }
+
+    #[test]
+    fn a_range_includes_its_ends_and_an_error_names_the_field() {
+        assert_eq!(in_range("x", 1.0, 0.0, 1.0), Ok(1.0));
+        assert_eq!(
+            in_range("x", 1.5, 0.0, 1.0),
+            Err(ValidationError::new(
+                "x",
+                "must be between 0 and 1, got 1.5"
+            ))
+        );
+        assert_eq!(
+            in_range("x", f64::NAN, 0.0, 1.0).unwrap_err().message,
+            "must be a finite number"
+        );
+        assert_eq!(
+            positive("y", 0.0),
+            Err(ValidationError::new("y", "must be positive, got 0"))
+        );
+    }
+}

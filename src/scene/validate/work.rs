@@ -63,3 +63,55 @@ pub(super) fn work(
         ),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::check_with;
+    use crate::scene::validate::Limits;
+    use serde_json::json;
+
+    #[test]
+    fn triangle_epochs_over_the_limit_are_refused_before_any_work() {
+        let limits = Limits {
+            max_triangle_epochs: 1,
+            ..Limits::default()
+        };
+        let e = check_with(|_| {}, &limits).unwrap_err();
+        assert_eq!(e.field, "epochs");
+        assert!(
+            e.message.starts_with(
+                "too large a computation: 2 triangles × 1 epochs = 2 triangle-epochs (limit 1)"
+            ),
+            "{e}"
+        );
+        assert!(e.is_limit());
+    }
+
+    #[test]
+    fn pixel_samples_are_counted_for_the_image_method_then_the_thumbnails() {
+        let limits = Limits {
+            max_pixel_samples: 1000,
+            ..Limits::default()
+        };
+        let image = |v: &mut serde_json::Value| {
+            v["method"] = json!("image");
+            v["image_size"] = json!(16);
+            v["image_samples"] = json!(2);
+        };
+        // 1 epoch × 16² pixels × 2² samples = 1024
+        let e = check_with(image, &limits).unwrap_err();
+        assert_eq!(e.field, "image_size");
+        assert!(
+            e.message.contains("= 1024 pixel samples (limit 1000)"),
+            "{e}"
+        );
+        // 1 frame × 16² × 3² = 2304 thumbnail samples
+        let thumbs = |v: &mut serde_json::Value| v["thumbnails"] = json!({"size": 16});
+        let e = check_with(thumbs, &limits).unwrap_err();
+        assert_eq!(e.field, "thumbnails");
+        assert!(
+            e.message.contains("2304 thumbnail samples pixel samples"),
+            "{e}"
+        );
+    }
+}

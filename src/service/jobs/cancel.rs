@@ -84,3 +84,42 @@ fn cancel(e: &mut Entry, now: i64) -> bool {
         _ => false,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_fixtures::entry;
+    use super::*;
+
+    #[test]
+    fn a_queued_or_running_job_is_cancelled_and_its_run_asked_to_stop() {
+        for state in [JobState::Queued, JobState::Running] {
+            let mut e = entry(state);
+            assert!(cancel(&mut e, 5_000));
+            assert_eq!(e.rec.state, JobState::Cancelled);
+            assert_eq!(e.rec.finished_ms, Some(5_000));
+            assert!(e.progress.is_cancelled());
+        }
+    }
+
+    #[test]
+    fn a_running_job_keeps_the_epochs_of_its_run_and_a_queued_one_its_record() {
+        let mut e = entry(JobState::Running);
+        e.rec.epochs_done = 9; // stale: the run's counter (0 here) is what was computed
+        cancel(&mut e, 5_000);
+        assert_eq!(e.rec.epochs_done, 0);
+        let mut e = entry(JobState::Queued);
+        e.rec.epochs_done = 3;
+        cancel(&mut e, 5_000);
+        assert_eq!(e.rec.epochs_done, 3);
+    }
+
+    #[test]
+    fn a_finished_job_is_not_cancelled() {
+        for state in [JobState::Done, JobState::Failed, JobState::Cancelled] {
+            let mut e = entry(state);
+            assert!(!cancel(&mut e, 5_000));
+            assert_eq!((e.rec.state, e.rec.finished_ms), (state, Some(3_000)));
+            assert!(!e.progress.is_cancelled());
+        }
+    }
+}

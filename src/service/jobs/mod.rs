@@ -23,6 +23,8 @@ mod cancel;
 mod expiry;
 mod status;
 mod submit;
+#[cfg(test)]
+mod test_fixtures;
 mod worker;
 
 pub use super::record::{JobRecord, JobState};
@@ -168,4 +170,32 @@ fn requeue_interrupted(rec: &mut JobRecord) -> bool {
     rec.state = JobState::Queued;
     rec.epochs_done = 0;
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_fixtures::record;
+    use super::*;
+
+    #[test]
+    fn an_interrupted_job_is_queued_again_from_the_start() {
+        for state in [JobState::Queued, JobState::Running] {
+            let mut rec = record(state);
+            rec.epochs_done = 7;
+            assert!(requeue_interrupted(&mut rec));
+            assert_eq!((rec.state, rec.epochs_done), (JobState::Queued, 0));
+            // the run count and times stay: a restart is one more attempt of the same job
+            assert_eq!(rec.attempts, record(state).attempts);
+        }
+    }
+
+    #[test]
+    fn a_finished_job_is_left_as_it_is() {
+        for state in [JobState::Done, JobState::Failed, JobState::Cancelled] {
+            let mut rec = record(state);
+            rec.epochs_done = 7;
+            assert!(!requeue_interrupted(&mut rec));
+            assert_eq!((rec.state, rec.epochs_done), (state, 7));
+        }
+    }
 }

@@ -142,3 +142,55 @@ impl Jobs {
 pub fn no_such_job(id: &str) -> ApiError {
     ApiError::not_found(format!("no job with id `{id}` (finished jobs expire)")).with_field("id")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_fixtures::entry;
+    use super::*;
+
+    const TTL: Duration = Duration::from_secs(60);
+
+    #[test]
+    fn times_are_rfc3339_utc_to_the_millisecond() {
+        assert_eq!(rfc3339(0), "1970-01-01T00:00:00.000Z");
+        assert_eq!(rfc3339(1_234), "1970-01-01T00:00:01.234Z");
+    }
+
+    #[test]
+    fn a_done_job_shows_all_its_epochs_its_result_and_its_expiry() {
+        let s = status_of(&entry(JobState::Done), TTL);
+        assert_eq!((s.epochs_done, s.percent), (10, 100.0));
+        assert_eq!(s.result_url.as_deref(), Some("/v1/jobs/job-1/result"));
+        assert_eq!(s.finished_at.as_deref(), Some("1970-01-01T00:00:03.000Z"));
+        assert_eq!(s.expires_at.as_deref(), Some("1970-01-01T00:01:03.000Z"));
+    }
+
+    #[test]
+    fn an_unfinished_job_has_no_result_and_no_expiry() {
+        let s = status_of(&entry(JobState::Queued), TTL);
+        assert_eq!(
+            (s.state, s.epochs_done, s.percent),
+            (JobState::Queued, 0, 0.0)
+        );
+        assert_eq!(
+            (s.result_url, s.finished_at, s.expires_at),
+            (None, None, None)
+        );
+        assert_eq!(s.created_at, "1970-01-01T00:00:01.000Z");
+        // a running job counts its progress, not its record
+        let mut e = entry(JobState::Running);
+        e.rec.epochs_done = 9;
+        assert_eq!(status_of(&e, TTL).epochs_done, 0);
+    }
+
+    #[test]
+    fn a_failed_job_keeps_its_partial_count_and_says_why() {
+        let mut e = entry(JobState::Failed);
+        e.rec.error = Some("boom".into());
+        let s = status_of(&e, TTL);
+        assert_eq!((s.epochs_done, s.percent), (4, 40.0));
+        assert_eq!((s.error.as_deref(), s.result_url), (Some("boom"), None));
+        e.rec.epochs_total = 0;
+        assert_eq!(status_of(&e, TTL).percent, 0.0);
+    }
+}

@@ -172,3 +172,30 @@ fn settle(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_fixtures::record;
+    use super::*;
+
+    #[test]
+    fn a_successful_run_is_done_with_its_result() {
+        let mut rec = record(JobState::Running);
+        let result = settle(&mut rec, Ok((b"{}".to_vec(), 10)), 9_000, || {
+            panic!("the progress is not asked for a done job")
+        });
+        assert_eq!(result.as_deref(), Some(&b"{}"[..]));
+        assert_eq!((rec.state, rec.epochs_done), (JobState::Done, 10));
+        assert_eq!((rec.finished_ms, rec.error), (Some(9_000), None));
+    }
+
+    #[test]
+    fn a_failed_run_keeps_its_message_and_the_epochs_computed() {
+        let mut rec = record(JobState::Running);
+        let result = settle(&mut rec, Err("no disk".into()), 9_000, || 6);
+        assert_eq!(result, None);
+        assert_eq!((rec.state, rec.epochs_done), (JobState::Failed, 6));
+        assert_eq!(rec.error.as_deref(), Some("no disk"));
+        assert_eq!(rec.finished_ms, Some(9_000));
+    }
+}

@@ -6,6 +6,8 @@ pub mod geometry;
 pub mod presets;
 pub mod request;
 pub mod response;
+#[cfg(test)]
+pub(crate) mod test_fixtures;
 pub mod validate;
 
 pub use error::{Limits, ValidationError};

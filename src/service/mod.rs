@@ -22,6 +22,8 @@ pub mod server;
 pub mod store;
 pub mod threads;
 
+pub use routes::api_router;
+
 use crate::integrate::{Cancelled, Progress};
 use crate::scene::Scene;
 use axum::extract::{DefaultBodyLimit, Request, State};
@@ -40,9 +42,6 @@ use std::time::Duration;
 use store::Store;
 use tower_http::catch_panic::CatchPanicLayer;
 use tower_http::timeout::TimeoutLayer;
-use utoipa::OpenApi;
-use utoipa_axum::router::OpenApiRouter;
-use utoipa_axum::routes;
 use utoipa_swagger_ui::SwaggerUi;
 
 /// Everything `glint serve` configures.
@@ -92,22 +91,6 @@ pub struct AppState {
     pub store: Arc<Store>,
     pub pools: threads::Pools,
     pub engine: Engine,
-}
-
-/// The documented routes, with their OpenAPI paths.
-pub fn api_router() -> OpenApiRouter<AppState> {
-    OpenApiRouter::with_openapi(openapi::ApiDoc::openapi())
-        .routes(routes!(routes::post_lightcurve))
-        .routes(routes!(routes::post_brdf_fit))
-        .routes(routes!(routes::post_job, routes::list_jobs))
-        .routes(routes!(routes::get_job, routes::delete_job))
-        .routes(routes!(routes::get_job_result))
-        .routes(routes!(routes::get_thumbnail))
-        .routes(routes!(routes::list_scenes))
-        .routes(routes!(routes::get_scene))
-        .routes(routes!(routes::healthz))
-        .routes(routes!(routes::readyz))
-        .routes(routes!(routes::metrics))
 }
 
 /// Requires `Authorization: Bearer <token>` on everything but the health checks.

@@ -7,6 +7,7 @@
 //! async runtime (nice 0: health checks, small answers) ≫ light curves (nice 10) ≫ jobs
 //! (nice 19). Nothing is lost when only one kind runs: it gets all the cores.
 
+use super::errors::ApiError;
 use std::sync::Arc;
 
 /// Nice level of the light-curve pool's threads.
@@ -59,4 +60,18 @@ pub fn set_current_thread_nice(nice: i32) {
     }
     #[cfg(not(target_os = "linux"))]
     let _ = nice;
+}
+
+/// Runs `f` on tokio's blocking threads, so that parsing, computing or disk work never
+/// holds up the async runtime. A task that does not return — `f` panicked, or the runtime
+/// is shutting down — is answered by [`ApiError::from_join`], `what` naming the work
+/// (e.g. "reading the result").
+pub async fn run_blocking<T, F>(what: &str, f: F) -> Result<T, ApiError>
+where
+    F: FnOnce() -> T + Send + 'static,
+    T: Send + 'static,
+{
+    tokio::task::spawn_blocking(f)
+        .await
+        .map_err(|e| ApiError::from_join(what, e))
 }

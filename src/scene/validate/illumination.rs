@@ -1,0 +1,120 @@
+//! `illumination`: the Sun's band and temperature, and the earthshine model and albedo.
+
+use super::values::{err, finite, in_range};
+use super::ValidationError;
+use crate::radiometry::{planck, AU_M, SUN_RADIUS_M};
+use crate::scene::request::Request;
+use crate::scene::{EarthshineModel, Illumination};
+
+/// The least band irradiance of the Sun at 1 AU a request may ask for, W/m²: a scene's
+/// geometry (albedo × area / range²) can take another hundred decades off it before f64
+/// underflows, where a magnitude would turn `null` although light arrives.
+pub const MIN_SUN_BAND_1AU_W_M2: f64 = 1e-200;
+
+/// The request's illumination, the defaults filled in.
+pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationError> {
+    let mut out = Illumination::default();
+    let Some(spec) = &req.illumination else {
+        return Ok(out);
+    };
+    if let Some([a, b]) = spec.band_um {
+        finite("illumination.band_um[0]", a)?;
+        finite("illumination.band_um[1]", b)?;
+        if a < 0.0 || b <= a {
+            return err(
+                "illumination.band_um",
+                format!("must be [λ1, λ2] in µm with 0 <= λ1 < λ2, got [{a}, {b}]"),
+            );
+        }
+        out.band_um = [a, b];
+    }
+    if let Some(t) = spec.sun_temperature_k {
+        out.sun_temperature_k = in_range("illumination.sun_temperature_k", t, 100.0, 100_000.0)?;
+    }
+    // A band far in the Wien tail of a cold Sun (0.01–0.05 µm at 300 K: ~1e-410 W/m²)
+    // holds light that no f64 can carry through a scene: say so rather than answer 0.
+    let [a, b] = out.band_um;
+    let t = out.sun_temperature_k;
+    let ln_es = planck::ln_band_exitance(a, b, t) + 2.0 * (SUN_RADIUS_M / AU_M).ln();
+    if ln_es < MIN_SUN_BAND_1AU_W_M2.ln() {
+        return err(
+            "illumination.band_um",
+            format!(
+                "[{a}, {b}] µm holds almost none of a {t} K Sun's light: its irradiance at \
+                 1 AU would be 1e{:.0} W/m², below the {MIN_SUN_BAND_1AU_W_M2:e} W/m² that \
+                 f64 radiometry carries through a scene; choose a longer band or a hotter Sun",
+                ln_es / std::f64::consts::LN_10
+            ),
+        );
+    }
+    if let Some(e) = &spec.earthshine {
+        out.earthshine = match e.as_str() {
+            "off" => EarthshineModel::Off,
+            "seed" => EarthshineModel::Seed,
+            "sphere" => EarthshineModel::Sphere,
+            other => {
+                return err(
+                    "illumination.earthshine",
+                    format!("unknown model `{other}`; expected off, seed or sphere"),
+                )
+            }
+        };
+    }
+    if let Some(a) = spec.earth_albedo {
+        out.earth_albedo = in_range("illumination.earth_albedo", a, 0.0, 1.0)?;
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::test_fixtures::{check, refused};
+    use crate::scene::validate::ValidationError;
+    use crate::scene::EarthshineModel;
+    use serde_json::json;
+
+    #[test]
+    fn a_band_runs_from_short_to_long() {
+        let e = refused(|v| v["illumination"] = json!({"band_um": [0.9, 0.4]}));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "illumination.band_um",
+                "must be [λ1, λ2] in µm with 0 <= λ1 < λ2, got [0.9, 0.4]"
+            )
+        );
+    }
+
+    #[test]
+    fn a_band_with_almost_no_sunlight_is_refused() {
+        let e = refused(|v| {
+            v["illumination"] = json!({"band_um": [0.01, 0.05], "sun_temperature_k": 300.0})
+        });
+        assert_eq!(e.field, "illumination.band_um");
+        assert!(
+            e.message
+                .contains("holds almost none of a 300 K Sun's light"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_earthshine_model_is_named_and_defaults_apply() {
+        let e = refused(|v| v["illumination"] = json!({"earthshine": "moon"}));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "illumination.earthshine",
+                "unknown model `moon`; expected off, seed or sphere"
+            )
+        );
+        let e = refused(|v| v["illumination"] = json!({"earth_albedo": -0.1}));
+        assert_eq!(e.field, "illumination.earth_albedo");
+        let scene = check(|v| v["illumination"] = json!({"earthshine": "off"})).expect("valid");
+        assert_eq!(scene.illumination.earthshine, EarthshineModel::Off);
+        assert_eq!(
+            scene.illumination.band_um,
+            crate::scene::Illumination::default().band_um
+        );
+    }
+}

@@ -1,0 +1,196 @@
+//! What a client sees of the jobs: one job's status (`GET /v1/jobs/{id}`), the recent
+//! jobs, the count in each state, and a finished job's stored result.
+
+use super::{Entry, JobState, Jobs};
+use crate::service::errors::ApiError;
+use crate::service::threads::run_blocking;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::time::Duration;
+use utoipa::ToSchema;
+
+/// A job's status as `GET /v1/jobs/{id}` reports it.
+#[derive(Debug, Clone, Serialize, Deserialize, ToSchema, PartialEq)]
+pub struct JobStatus {
+    /// Job id (UUID).
+    pub id: String,
+    pub state: JobState,
+    /// Epochs computed as a percentage of the total, 0–100.
+    pub percent: f64,
+    /// Epochs computed so far.
+    pub epochs_done: usize,
+    /// Epochs in the request.
+    pub epochs_total: usize,
+    /// When the job was accepted (RFC 3339, UTC).
+    pub created_at: String,
+    /// When the current run started (RFC 3339, UTC).
+    pub started_at: Option<String>,
+    /// When the job reached its final state (RFC 3339, UTC).
+    pub finished_at: Option<String>,
+    /// When a finished job and its result will be removed (RFC 3339, UTC).
+    pub expires_at: Option<String>,
+    /// Why the job failed.
+    pub error: Option<String>,
+    /// Times the job was started (above 1 when a restart interrupted it).
+    pub attempts: u32,
+    /// Where to fetch the result once `state` is `done`.
+    pub result_url: Option<String>,
+}
+
+/// Unix milliseconds as RFC 3339 UTC text.
+pub fn rfc3339(ms: i64) -> String {
+    chrono::DateTime::from_timestamp_millis(ms)
+        .map(|d| d.to_rfc3339_opts(chrono::SecondsFormat::Millis, true))
+        .unwrap_or_default()
+}
+
+/// The status of `e`; a finished job expires `ttl` after it finished.
+fn status_of(e: &Entry, ttl: Duration) -> JobStatus {
+    let r = &e.rec;
+    let done = match r.state {
+        JobState::Running => e.progress.done(),
+        JobState::Done => r.epochs_total,
+        _ => r.epochs_done,
+    };
+    let percent = if r.epochs_total == 0 {
+        0.0
+    } else {
+        100.0 * done as f64 / r.epochs_total as f64
+    };
+    JobStatus {
+        id: r.id.clone(),
+        state: r.state,
+        percent,
+        epochs_done: done,
+        epochs_total: r.epochs_total,
+        created_at: rfc3339(r.created_ms),
+        started_at: r.started_ms.map(rfc3339),
+        finished_at: r.finished_ms.map(rfc3339),
+        expires_at: r
+            .finished_ms
+            .map(|f| rfc3339(f.saturating_add(ttl.as_millis() as i64))),
+        error: r.error.clone(),
+        attempts: r.attempts,
+        result_url: (r.state == JobState::Done).then(|| format!("/v1/jobs/{}/result", r.id)),
+    }
+}
+
+impl Jobs {
+    /// The status of `e` as a client sees it.
+    pub(super) fn status_of(&self, e: &Entry) -> JobStatus {
+        status_of(e, self.ttl)
+    }
+
+    /// The status of one job.
+    pub fn status(&self, id: &str) -> Option<JobStatus> {
+        self.table().get(id).map(|e| self.status_of(e))
+    }
+
+    /// The most recent jobs, newest first.
+    pub fn list(&self, limit: usize, state: Option<JobState>) -> Vec<JobStatus> {
+        let t = self.table();
+        let mut v: Vec<&Entry> = t
+            .values()
+            .filter(|e| state.is_none_or(|s| e.rec.state == s))
+            .collect();
+        v.sort_by(|a, b| {
+            b.rec
+                .created_ms
+                .cmp(&a.rec.created_ms)
+                .then_with(|| a.rec.id.cmp(&b.rec.id))
+        });
+        v.into_iter()
+            .take(limit)
+            .map(|e| self.status_of(e))
+            .collect()
+    }
+
+    /// Number of jobs in each state (for `/metrics`).
+    pub fn counts(&self) -> HashMap<JobState, usize> {
+        let mut m: HashMap<JobState, usize> = JobState::ALL.iter().map(|&s| (s, 0)).collect();
+        for e in self.table().values() {
+            *m.entry(e.rec.state).or_default() += 1;
+        }
+        m
+    }
+
+    /// The stored response JSON of a finished job; `Err` says why there is none.
+    pub async fn result(&self, id: &str) -> Result<Vec<u8>, ApiError> {
+        let state = self
+            .table()
+            .get(id)
+            .map(|e| e.rec.state)
+            .ok_or_else(|| no_such_job(id))?;
+        if state != JobState::Done {
+            return Err(ApiError::conflict(format!(
+                "job is {}, there is no result{}",
+                state.name(),
+                if state.is_final() { "" } else { " yet" }
+            )));
+        }
+        let store = self.store.clone();
+        let key = id.to_string();
+        run_blocking("reading the result", move || store.result(&key))
+            .await?
+            .map_err(ApiError::from)?
+            // Removed by expiry between the two looks.
+            .ok_or_else(|| no_such_job(id))
+    }
+}
+
+/// The 404 of a job id that is not (or no longer) known.
+pub fn no_such_job(id: &str) -> ApiError {
+    ApiError::not_found(format!("no job with id `{id}` (finished jobs expire)")).with_field("id")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::test_fixtures::entry;
+    use super::*;
+
+    const TTL: Duration = Duration::from_secs(60);
+
+    #[test]
+    fn times_are_rfc3339_utc_to_the_millisecond() {
+        assert_eq!(rfc3339(0), "1970-01-01T00:00:00.000Z");
+        assert_eq!(rfc3339(1_234), "1970-01-01T00:00:01.234Z");
+    }
+
+    #[test]
+    fn a_done_job_shows_all_its_epochs_its_result_and_its_expiry() {
+        let s = status_of(&entry(JobState::Done), TTL);
+        assert_eq!((s.epochs_done, s.percent), (10, 100.0));
+        assert_eq!(s.result_url.as_deref(), Some("/v1/jobs/job-1/result"));
+        assert_eq!(s.finished_at.as_deref(), Some("1970-01-01T00:00:03.000Z"));
+        assert_eq!(s.expires_at.as_deref(), Some("1970-01-01T00:01:03.000Z"));
+    }
+
+    #[test]
+    fn an_unfinished_job_has_no_result_and_no_expiry() {
+        let s = status_of(&entry(JobState::Queued), TTL);
+        assert_eq!(
+            (s.state, s.epochs_done, s.percent),
+            (JobState::Queued, 0, 0.0)
+        );
+        assert_eq!(
+            (s.result_url, s.finished_at, s.expires_at),
+            (None, None, None)
+        );
+        assert_eq!(s.created_at, "1970-01-01T00:00:01.000Z");
+        // a running job counts its progress, not its record
+        let mut e = entry(JobState::Running);
+        e.rec.epochs_done = 9;
+        assert_eq!(status_of(&e, TTL).epochs_done, 0);
+    }
+
+    #[test]
+    fn a_failed_job_keeps_its_partial_count_and_says_why() {
+        let mut e = entry(JobState::Failed);
+        e.rec.error = Some("boom".into());
+        let s = status_of(&e, TTL);
+        assert_eq!((s.epochs_done, s.percent), (4, 40.0));
+        assert_eq!((s.error.as_deref(), s.result_url), (Some("boom"), None));
+        e.rec.epochs_total = 0;
+        assert_eq!(status_of(&e, TTL).percent, 0.0);
+    }
+}

@@ -1,0 +1,87 @@
+//! `POST /v1/fits/brdf`: material parameters fitted to measured BRDF samples, within the
+//! request timeout, on the light-curve pool.
+
+use super::JsonBody;
+use crate::fit::brdf::{self as fit_brdf, BrdfFit, BrdfFitRequest};
+use crate::scene::validate;
+use crate::service::errors::{ApiError, ErrorBody};
+use crate::service::AppState;
+use axum::extract::State;
+use axum::http::StatusCode;
+use axum::Json;
+
+/// An example body of `POST /v1/fits/brdf`: a few samples of a glossy paint.
+pub fn example_brdf_fit() -> serde_json::Value {
+    serde_json::json!({
+        "model": "lambert",
+        "samples": [
+            { "theta_i_deg": 30.0, "theta_r_deg": 0.0, "phi_deg": 180.0, "brdf_sr": 0.16 },
+            { "theta_i_deg": 30.0, "theta_r_deg": 30.0, "phi_deg": 180.0, "brdf_sr": 0.15 },
+            { "theta_i_deg": 30.0, "theta_r_deg": 60.0, "phi_deg": 0.0, "brdf_sr": 0.17 }
+        ]
+    })
+}
+
+/// Fit a material model to measured BRDF samples.
+///
+/// What `glint fit-brdf` does with a CSV file: bounded, robust (Huber by default)
+/// Levenberg–Marquardt from several starts; the parameters come back under the names a
+/// request's material takes, with 1σ uncertainties from the Jacobian at the optimum.
+#[utoipa::path(
+    post, path = "/v1/fits/brdf", tag = "fits",
+    request_body(content = BrdfFitRequest, content_type = "application/json",
+        example = json!(example_brdf_fit())),
+    responses(
+        (status = 200, description = "The fitted parameters", body = BrdfFit),
+        (status = 400, description = "Malformed JSON or body", body = ErrorBody),
+        (status = 401, description = "Missing or wrong bearer token", body = ErrorBody),
+        (status = 413, description = "Body over the size limit", body = ErrorBody),
+        (status = 415, description = "Content-Type is not application/json", body = ErrorBody),
+        (status = 422, description = "A bad sample, model or option; `field` names it (e.g. `samples[3].phi_deg`)", body = ErrorBody),
+        (status = 503, description = "Busy (see `Retry-After`), or over the request timeout", body = ErrorBody),
+    )
+)]
+pub async fn post_brdf_fit(
+    State(st): State<AppState>,
+    JsonBody(body): JsonBody,
+) -> Result<Json<BrdfFit>, ApiError> {
+    let timeout = st.limits.request_timeout;
+    let work = async {
+        let slot = st.slots.acquire().await.map_err(|_| ApiError::busy(1))?;
+        let pool = st.pools.sync.clone();
+        // Not `run_blocking`: this endpoint has always answered a failed task with
+        // `ApiError::internal` (the join error's own text), not `from_join`'s wording.
+        tokio::task::spawn_blocking(move || -> Result<BrdfFit, ApiError> {
+            let _slot = slot;
+            let text = std::str::from_utf8(&body)
+                .map_err(|e| ApiError::bad_request(format!("request body is not UTF-8: {e}")))?;
+            let req: BrdfFitRequest = validate::parse_json(text)?;
+            let opts = fit_brdf::Options::from_request(&req)?;
+            let mut result = pool.install(|| fit_brdf::fit(&req.samples, &opts))?;
+            if req.plot == Some(true) {
+                let brdf = result
+                    .brdf()
+                    .ok_or_else(|| ApiError::internal("fitted parameters"))?;
+                let groups = fit_brdf::plot_data(&req.samples, &brdf);
+                let title = format!("{} fit", result.model);
+                result.plot_svg = Some(
+                    crate::report::fit_plot::brdf_svg(&title, &groups)
+                        .map_err(ApiError::internal)?,
+                );
+            }
+            Ok(result)
+        })
+        .await
+        .map_err(ApiError::internal)?
+    };
+    let result = tokio::time::timeout(timeout, work).await.map_err(|_| {
+        ApiError::new(
+            StatusCode::SERVICE_UNAVAILABLE,
+            format!(
+                "the fit took longer than the request timeout ({} s)",
+                timeout.as_secs_f64()
+            ),
+        )
+    })??;
+    Ok(Json(result))
+}

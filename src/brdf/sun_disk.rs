@@ -25,7 +25,7 @@
 //!   only ([`SunLight::eclipsed`]).
 
 use super::{Brdf, Directions, Fixed, Frame};
-use crate::radiometry::earth::orthonormal_basis;
+use crate::geometry::orthonormal_basis;
 use glam::DVec3;
 
 /// Lobes with an RMS slope above this many solar radii see the Sun as a point. A point

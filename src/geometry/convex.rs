@@ -827,7 +827,7 @@ fn lid_of(
         return None; // more than one loop
     }
     let normal = if n.dot(inside) > 0.0 { -n } else { n };
-    let (u, w) = crate::radiometry::earth::orthonormal_basis(normal);
+    let (u, w) = crate::geometry::orthonormal_basis(normal);
     let corners: Vec<glam::DVec3> = ring.iter().map(|&v| mesh.vertices[v as usize]).collect();
     let origin = corners[0];
     let mut outline: Vec<glam::DVec2> = corners

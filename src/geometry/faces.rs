@@ -225,7 +225,7 @@ fn morton3(x: u32, y: u32, z: u32) -> u64 {
 /// What is projected is never shorter than 0.14, so no rounding turns the result.
 pub fn tangent_of(normal: DVec3, axis: DVec3) -> DVec3 {
     let a = if normal.dot(axis).abs() > 0.99 {
-        crate::radiometry::earth::orthonormal_basis(axis).0
+        super::orthonormal_basis(axis).0
     } else {
         axis
     };

@@ -1,8 +1,9 @@
 //! Convexity: when no part of the mesh can shadow or hide another, the two cosines
 //! decide everything and no ray need be cast.
 
-use super::faces::{find, union, Faces};
+use super::faces::Faces;
 use super::mesh::Mesh;
+use super::union_find::{find, union};
 use rayon::prelude::*;
 
 /// Largest faces × vertices product checked exactly (all vertices behind every face).
@@ -494,23 +495,15 @@ fn parts_of(mesh: &Mesh, faces: &Faces, tol: f64, by_edges: bool) -> Vec<(Convex
         .collect();
     let uses = || edges.chunk_by(|x, y| x.0 == y.0);
     let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
-    fn root(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            p[x as usize] = p[p[x as usize] as usize];
-            x = p[x as usize];
-        }
-        x
-    }
     for adj in uses() {
         for w in adj.windows(2) {
-            let (ra, rb) = (root(&mut parent, w[0].1), root(&mut parent, w[1].1));
-            parent[ra.max(rb) as usize] = ra.min(rb);
+            union(&mut parent, w[0].1, w[1].1);
         }
     }
     // each part under its least face, which is its root
     let mut members: Vec<Vec<u32>> = vec![Vec::new(); faces.len()];
     for f in 0..faces.len() as u32 {
-        members[root(&mut parent, f) as usize].push(f);
+        members[find(&mut parent, f) as usize].push(f);
     }
     // open edges per part: an edge of a part that no other triangle of it uses the
     // other way round (edges inside a merged face cancel like any other), in the
@@ -521,7 +514,7 @@ fn parts_of(mesh: &Mesh, faces: &Faces, tol: f64, by_edges: bool) -> Vec<(Convex
     let mut non_manifold = vec![false; faces.len()];
     for adj in uses() {
         let ((a, b), face, _, _) = adj[0];
-        let part = root(&mut parent, face) as usize;
+        let part = find(&mut parent, face) as usize;
         match adj {
             [(_, _, forward, _)] => open[part].push(if *forward { (a, b) } else { (b, a) }),
             [(_, _, x, s), (_, _, y, t)] if x != y => inner[part].push((*s, *t)),

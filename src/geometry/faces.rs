@@ -5,6 +5,7 @@
 //! triangles (a subdivided box side is one face).
 
 use super::mesh::Mesh;
+use super::union_find::{find, union};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::borrow::Cow;
@@ -184,25 +185,6 @@ impl Face {
             material: mesh.material_ids[triangles[0] as usize],
             triangles,
         }
-    }
-}
-
-/// Union–find over indices: the root of `x`'s set (halving the path on the way).
-pub(crate) fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        let p = parent[x as usize];
-        parent[x as usize] = parent[p as usize];
-        x = p;
-    }
-    x
-}
-
-/// Union–find: joins the sets of `a` and `b` under the lesser root.
-pub(crate) fn union(parent: &mut [u32], a: u32, b: u32) {
-    let ra = find(parent, a);
-    let rb = find(parent, b);
-    if ra != rb {
-        parent[ra.max(rb) as usize] = ra.min(rb);
     }
 }
 

@@ -8,6 +8,7 @@ pub mod faces;
 pub mod mesh;
 pub mod obj;
 pub mod polygon;
+pub mod union_find;
 
 pub use basis::orthonormal_basis;
 pub use faces::{Face, Faces};

@@ -16,7 +16,7 @@
 use glam::DVec3;
 use glint::brdf::sun_disk::{self, EarthDisk, SunLight};
 use glint::brdf::{Brdf, Frame, RoughConductor, SeedMicrofacet};
-use glint::radiometry::earth::orthonormal_basis;
+use glint::geometry::orthonormal_basis;
 use glint::radiometry::{eclipse, sun, AU_M};
 use std::f64::consts::PI;
 

@@ -22,7 +22,8 @@
 //! as wide as the patches or wider is evaluated at the beams like the rest.
 
 use super::{Brdf, Directions, Frame};
-use crate::radiometry::earth::{gauss_legendre, orthonormal_basis, Earthshine, SunlitEarth};
+use crate::geometry::orthonormal_basis;
+use crate::radiometry::earth::{gauss_legendre, Earthshine, SunlitEarth};
 use glam::DVec3;
 use std::f64::consts::TAU;
 

@@ -5,6 +5,7 @@
 //! triangles (a subdivided box side is one face).
 
 use super::mesh::Mesh;
+use super::union_find::{find, union};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::borrow::Cow;
@@ -187,25 +188,6 @@ impl Face {
     }
 }
 
-/// Union–find over indices: the root of `x`'s set (halving the path on the way).
-pub(crate) fn find(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        let p = parent[x as usize];
-        parent[x as usize] = parent[p as usize];
-        x = p;
-    }
-    x
-}
-
-/// Union–find: joins the sets of `a` and `b` under the lesser root.
-pub(crate) fn union(parent: &mut [u32], a: u32, b: u32) {
-    let ra = find(parent, a);
-    let rb = find(parent, b);
-    if ra != rb {
-        parent[ra.max(rb) as usize] = ra.min(rb);
-    }
-}
-
 /// Interleaves the low 10 bits of x, y, z.
 fn morton3(x: u32, y: u32, z: u32) -> u64 {
     fn spread(v: u32) -> u64 {
@@ -225,7 +207,7 @@ fn morton3(x: u32, y: u32, z: u32) -> u64 {
 /// What is projected is never shorter than 0.14, so no rounding turns the result.
 pub fn tangent_of(normal: DVec3, axis: DVec3) -> DVec3 {
     let a = if normal.dot(axis).abs() > 0.99 {
-        crate::radiometry::earth::orthonormal_basis(axis).0
+        super::orthonormal_basis(axis).0
     } else {
         axis
     };

@@ -1,5 +1,6 @@
 //! Geometry: the triangle mesh, OBJ parsing, coplanar faces, convexity, ray casting.
 
+pub mod basis;
 pub mod builtin;
 pub mod bvh;
 pub mod convex;
@@ -7,6 +8,8 @@ pub mod faces;
 pub mod mesh;
 pub mod obj;
 pub mod polygon;
+pub mod union_find;
 
+pub use basis::orthonormal_basis;
 pub use faces::{Face, Faces};
 pub use mesh::Mesh;

@@ -17,8 +17,8 @@
 //! (per-face area here, per-pixel radiance there) separate.
 
 use crate::geometry::bvh::Occluder;
+use crate::geometry::orthonormal_basis;
 use crate::geometry::Faces;
-use crate::radiometry::earth::orthonormal_basis;
 use crate::scene::Scene;
 use glam::DVec3;
 

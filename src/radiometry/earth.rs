@@ -9,6 +9,7 @@
 //!   narrow specular lobes take a glint rule per face (`brdf/earth_light.rs`).
 
 use super::EARTH_RADIUS_M;
+use crate::geometry::orthonormal_basis;
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 
@@ -265,18 +266,6 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     }
     out.reverse();
     out
-}
-
-/// Two unit vectors completing `n` to a right-handed orthonormal basis.
-pub fn orthonormal_basis(n: DVec3) -> (DVec3, DVec3) {
-    // Duff et al. 2017, branchless ONB
-    let sign = 1.0_f64.copysign(n.z);
-    let a = -1.0 / (sign + n.z);
-    let b = n.x * n.y * a;
-    (
-        DVec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-        DVec3::new(b, sign + n.y * n.y * a, -n.y),
-    )
 }
 
 /// Height above the mean sphere (m) within which an observer counts as on the ground: the

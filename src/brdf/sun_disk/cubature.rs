@@ -3,7 +3,7 @@
 //! and even angles — and their directions on the sky.
 
 use super::{PENUMBRA_RINGS, RINGS, SMOOTH_RULES};
-use crate::radiometry::earth::orthonormal_basis;
+use crate::geometry::orthonormal_basis;
 use glam::DVec3;
 
 /// A point of a rule on the unit disk: offsets in units of the disk radius, and weight

@@ -277,7 +277,7 @@ pub fn projected_with(
 mod tests {
     use super::*;
 
-    use crate::radiometry::earth::orthonormal_basis;
+    use crate::geometry::orthonormal_basis;
 
     /// The average of `brdf.projected` over the disk by a fine polar midpoint grid: the
     /// reference the rules are held to.

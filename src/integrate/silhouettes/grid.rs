@@ -69,7 +69,7 @@ impl Polygons<'_> {
 impl Grid {
     /// Projects the mesh along `d` and bins the polygons `keep` says may block.
     pub fn build(&mut self, mesh: &Polygons, d: DVec3, keep: impl Fn(usize) -> bool) {
-        let (u, w) = crate::radiometry::earth::orthonormal_basis(d);
+        let (u, w) = crate::geometry::orthonormal_basis(d);
         self.d = d;
         self.u = u;
         self.w = w;

@@ -140,7 +140,7 @@ impl<'a> Silhouettes<'a> {
         let face_basis: Vec<(DVec3, DVec3)> = faces
             .faces
             .iter()
-            .map(|f| crate::radiometry::earth::orthonormal_basis(f.normal))
+            .map(|f| crate::geometry::orthonormal_basis(f.normal))
             .collect();
         let (mut poly_spans, mut poly_index, mut poly_face) = (Vec::new(), Vec::new(), Vec::new());
         let mut face_polygons = Vec::with_capacity(faces.len());

@@ -9,7 +9,7 @@
 //! d and is found per epoch ([`super::grid`]); the second is fixed in the body frame and
 //! found here.
 
-use crate::geometry::faces::{find, union};
+use crate::geometry::union_find::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
 use rayon::prelude::*;

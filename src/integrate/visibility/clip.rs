@@ -97,7 +97,7 @@ impl Visibility {
         let dirs = dirs.map(|d| d.map(|d| above_horizon(d, n)));
         let x = &mut cache.clip;
         let f = &self.faces[face];
-        let (u, w) = crate::radiometry::earth::orthonormal_basis(n);
+        let (u, w) = crate::geometry::orthonormal_basis(n);
         let c = f.centroid;
         let plane = |p: DVec3| {
             let r = p - c;

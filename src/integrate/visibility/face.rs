@@ -179,7 +179,7 @@ fn pieces_of(
     if mode == VisibilityMode::Centroid {
         return (own(), Vec::new());
     }
-    let (u, w) = crate::radiometry::earth::orthonormal_basis(normal);
+    let (u, w) = crate::geometry::orthonormal_basis(normal);
     let origin = vertices[0];
     let plane_point = |v: &DVec3| ((*v - origin).dot(u), (*v - origin).dot(w));
     let mut pts: Vec<(f64, f64, usize)> = vertices

@@ -27,7 +27,7 @@ pub(super) struct Projection {
 
 impl Projection {
     pub(super) fn build(&mut self, faces: &[FaceGeom], d: DVec3) {
-        let (u, w) = crate::radiometry::earth::orthonormal_basis(d);
+        let (u, w) = crate::geometry::orthonormal_basis(d);
         self.dir = Some(d);
         self.u = u;
         self.w = w;

@@ -204,7 +204,7 @@ fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> V
 
 /// Does the part's section by the plane of `g` overlap `g` (by more than rounding)?
 fn section_meets_face(g: &FaceGeom, part: &ConvexPart, crossings: &[DVec3], tol: f64) -> bool {
-    let (u, w) = crate::radiometry::earth::orthonormal_basis(g.normal);
+    let (u, w) = crate::geometry::orthonormal_basis(g.normal);
     let plane = |p: &DVec3| {
         let r = *p - g.centroid;
         DVec2::new(r.dot(u), r.dot(w))
@@ -472,7 +472,7 @@ impl Silhouette {
 
     /// The (u, w) axes across `dir` that [`Silhouette::cover`]'s projected corners use.
     pub(super) fn axes(d: DVec3) -> (DVec3, DVec3) {
-        crate::radiometry::earth::orthonormal_basis(d)
+        crate::geometry::orthonormal_basis(d)
     }
 
     /// How the part (seen along `dir`, its hull behind the planes `planes`) stands to the

@@ -1,0 +1,130 @@
+//! Convexity: when no part of the mesh can shadow or hide another, the two cosines
+//! decide everything and no ray need be cast. When the mesh as a whole is not convex,
+//! pieces of it may still be, and each such piece shadows as its convex hull does.
+//!
+//! - this file: [`is_convex`] (the whole mesh, by its vertices or by its edges) and
+//!   [`is_planar`];
+//! - [`parts`]: [`convex_parts`], the connected pieces that lie on the boundary of their own
+//!   hull (a box, a dish), each checked against its faces' planes;
+//! - [`cap`]: the linear-time proof, from its edges alone, that a cap open on one flat side
+//!   (a dish) is such a piece;
+//! - [`lid`]: [`Lid`], a cap's open side as a convex polygon, and whether a ray from the cap
+//!   leaves through it; [`lid_view`]: [`LidView`], the lid seen along one direction, for
+//!   testing many points at once.
+
+use super::faces::Faces;
+use super::union_find::{find, union};
+use crate::geometry::mesh::Mesh;
+use rayon::prelude::*;
+
+mod cap;
+mod lid;
+mod lid_view;
+mod parts;
+
+pub use lid::Lid;
+pub use lid_view::{LidPoint, LidView};
+pub use parts::{convex_parts, ConvexPart};
+
+/// Largest faces × vertices product checked exactly (all vertices behind every face).
+const EXACT_LIMIT: usize = 400_000_000;
+/// Below this faces × vertices product the exact test is cheaper than building edges.
+const CHEAP_EXACT: usize = 20_000_000;
+
+/// True when every vertex lies on or behind the plane of every face (within a tolerance
+/// relative to the object's size). That is the exact condition for no self-shadowing of
+/// one-sided faces. Large meshes first try the local test — closed, connected, every
+/// edge convex — which implies global convexity (Tietze's theorem) in linear time; meshes
+/// failing every test are treated as non-convex, which only costs rays.
+pub fn is_convex(mesh: &Mesh, faces: &Faces) -> bool {
+    let (_, scale) = mesh.bounding_sphere();
+    let tol = 1e-9 * scale;
+    let work = faces.len().saturating_mul(mesh.vertices.len());
+    let exact = || {
+        faces.faces.par_iter().all(|f| {
+            let d = f.normal.dot(f.centroid);
+            mesh.vertices.iter().all(|v| f.normal.dot(*v) - d <= tol)
+        })
+    };
+    if work <= CHEAP_EXACT {
+        exact()
+    } else if locally_convex_and_closed(mesh, faces, tol) {
+        true
+    } else {
+        work <= EXACT_LIMIT && exact()
+    }
+}
+
+fn locally_convex_and_closed(mesh: &Mesh, faces: &Faces, tol: f64) -> bool {
+    // the welded edges sorted: the triangles sharing an edge side by side, so no hash map
+    let (welded, sorted) = faces.welded_edges(mesh);
+    let mut parent: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
+    // every edge shared by exactly two triangles (else open or non-manifold: leave it to
+    // the rays), and the second's far corner not in front of the first's plane; the first
+    // edge that fails ends the test (a rocket body's open skirt, a fragment's first dent)
+    for shared in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        let [(wa, wb, t0), (_, _, t1)] = shared[..] else {
+            return false;
+        };
+        let far = mesh.triangles[t1 as usize]
+            .iter()
+            .find(|&&v| welded[v as usize] != wa && welded[v as usize] != wb);
+        let Some(&far) = far else {
+            return false; // a degenerate triangle along the edge
+        };
+        let n = mesh.area_vector(t0 as usize).normalize();
+        let p = mesh.vertices[mesh.triangles[t0 as usize][0] as usize];
+        if n.dot(mesh.vertices[far as usize] - p) > tol {
+            return false;
+        }
+        union(&mut parent, t0, t1);
+    }
+    // one connected surface: two convex bodies side by side can shadow each other
+    (0..parent.len() as u32).all(|t| find(&mut parent, t) == 0)
+}
+
+/// True when every vertex lies in one plane (a flat plate, even two-sided, cannot
+/// shadow itself).
+pub fn is_planar(mesh: &Mesh) -> bool {
+    let (_, scale) = mesh.bounding_sphere();
+    let tol = 1e-9 * scale;
+    let n = (0..mesh.triangles.len())
+        .map(|i| mesh.area_vector(i))
+        .max_by(|a, b| a.length_squared().total_cmp(&b.length_squared()))
+        .map(|a| a.normalize());
+    let Some(n) = n else { return true };
+    let p = mesh.vertices[mesh.triangles[0][0] as usize];
+    mesh.triangles
+        .iter()
+        .flatten()
+        .all(|&i| n.dot(mesh.vertices[i as usize] - p).abs() <= tol)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::builtin;
+
+    #[test]
+    fn a_finely_meshed_sphere_is_convex_by_its_edges_and_a_dent_or_a_second_one_is_not() {
+        // 20·4^5 = 20,480 triangles: faces × vertices is past the exact test's cheap limit,
+        // so the edge test decides
+        let sphere = builtin::icosphere(5, 1.0);
+        let faces = |m: &Mesh| Faces::build(m, true);
+        assert!(sphere.triangles.len() * sphere.vertices.len() > CHEAP_EXACT);
+        assert!(is_convex(&sphere, &faces(&sphere)));
+        // one vertex pushed in by 1 % of the radius: a dent
+        let mut dented = sphere.clone();
+        dented.vertices[100] *= 0.99;
+        assert!(!is_convex(&dented, &faces(&dented)));
+        // two spheres side by side: each locally convex, together not
+        let mut two = sphere.clone();
+        let n = two.vertices.len() as u32;
+        two.vertices
+            .extend(sphere.vertices.iter().map(|v| *v + glam::DVec3::X * 3.0));
+        two.triangles
+            .extend(sphere.triangles.iter().map(|t| t.map(|i| i + n)));
+        two.material_ids.extend(sphere.material_ids.iter().copied());
+        assert!(!is_convex(&two, &faces(&two)));
+    }
+}

@@ -71,15 +71,19 @@ fn field_error(
     }
     let inner = e.into_inner();
     let message = inner.to_string();
-    // Name the unknown or repeated field itself; serde_path_to_error's path may
-    // already end with it.
-    let named_in = message.strip_prefix("unknown field `").or_else(|| {
-        if wording.names_duplicates {
-            message.strip_prefix("duplicate field `")
-        } else {
-            None
-        }
-    });
+    // Name the unknown, missing or repeated field itself; serde_path_to_error's path
+    // may already end with it (a missing one's path is the object that lacks it: a
+    // request without `object` would otherwise name no field at all).
+    let named_in = message
+        .strip_prefix("unknown field `")
+        .or_else(|| message.strip_prefix("missing field `"))
+        .or_else(|| {
+            if wording.names_duplicates {
+                message.strip_prefix("duplicate field `")
+            } else {
+                None
+            }
+        });
     if let Some(rest) = named_in {
         if let Some(name) = rest.split('`').next() {
             let named = field == name || field.ends_with(&format!(".{name}"));
@@ -127,6 +131,17 @@ mod tests {
         assert_eq!(e.field, "object.colour");
         assert!(e.message.starts_with("unknown field `colour`"), "{e}");
         assert!(!e.message.contains(" at line "), "{e}");
+    }
+
+    #[test]
+    fn a_missing_field_is_named_at_the_top_and_inside() {
+        let e = parse_request("{}").unwrap_err();
+        assert_eq!(e.field, "object");
+        assert!(e.message.starts_with("missing field `object`"), "{e}");
+        let mut v = minimal_request();
+        v["object"].as_object_mut().unwrap().remove("materials");
+        let e = parse_request(&v.to_string()).unwrap_err();
+        assert_eq!(e.field, "object.materials", "{e}");
     }
 
     #[test]

@@ -230,10 +230,7 @@ fn mutate(v: &mut Value, rng: &mut Rng) {
 fn renumber(v: &mut Value, rng: &mut Rng) {
     let mut all = Vec::new();
     paths(v, &mut Vec::new(), &mut all);
-    let numbers: Vec<_> = all
-        .into_iter()
-        .filter(|p| at(v, p).is_number())
-        .collect();
+    let numbers: Vec<_> = all.into_iter().filter(|p| at(v, p).is_number()).collect();
     if numbers.is_empty() {
         return;
     }

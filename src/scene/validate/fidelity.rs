@@ -36,7 +36,7 @@ pub(super) fn method(req: &Request) -> Result<Method, ValidationError> {
             return err(
                 "method",
                 format!(
-                    "unknown method `{other}`; expected auto, adaptive, centroid, convex or image"
+                    "unknown method `{other}`; expected auto, silhouette, adaptive, centroid, convex or image"
                 ),
             )
         }

@@ -5,6 +5,7 @@ use super::JsonBody;
 use crate::fit::brdf::{self as fit_brdf, BrdfFit, BrdfFitRequest};
 use crate::scene::validate;
 use crate::service::errors::{ApiError, ErrorBody};
+use crate::service::threads::run_blocking;
 use crate::service::AppState;
 use axum::extract::State;
 use axum::http::StatusCode;
@@ -49,9 +50,9 @@ pub async fn post_brdf_fit(
     let work = async {
         let slot = st.slots.acquire().await.map_err(|_| ApiError::busy(1))?;
         let pool = st.pools.sync.clone();
-        // Not `run_blocking`: this endpoint has always answered a failed task with
-        // `ApiError::internal` (the join error's own text), not `from_join`'s wording.
-        tokio::task::spawn_blocking(move || -> Result<BrdfFit, ApiError> {
+        // a panic in the fit is answered as every other computation's: the request id,
+        // never the panic's text (which `ApiError::internal` of the join error carried)
+        run_blocking("the fit", move || -> Result<BrdfFit, ApiError> {
             let _slot = slot;
             let text = std::str::from_utf8(&body)
                 .map_err(|e| ApiError::bad_request(format!("request body is not UTF-8: {e}")))?;
@@ -71,8 +72,7 @@ pub async fn post_brdf_fit(
             }
             Ok(result)
         })
-        .await
-        .map_err(ApiError::internal)?
+        .await?
     };
     let result = tokio::time::timeout(timeout, work).await.map_err(|_| {
         ApiError::new(

@@ -64,7 +64,7 @@ pub enum Occlusion<'a> {
     None,
     /// The per-face path (`adaptive`, `centroid`): proofs, exact clipping and rays face
     /// by face.
-    PerFace(Visibility),
+    PerFace(Box<Visibility>),
     /// The silhouette method (what `auto` takes for a non-convex mesh).
     Silhouettes(silhouettes::Silhouettes<'a>),
     /// The `image` method's pixel sampler.
@@ -143,7 +143,7 @@ impl<'a> Prepared<'a> {
             ),
         };
         let occlusion = if let Some(v) = visibility {
-            Occlusion::PerFace(v)
+            Occlusion::PerFace(Box::new(v))
         } else if scene.method == Method::Image {
             Occlusion::Image(self::image::ImageView::build(scene, &faces))
         } else if scene.method == Method::Silhouette || (scene.method == Method::Auto && !convex) {

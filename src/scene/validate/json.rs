@@ -24,9 +24,6 @@ pub fn parse_json<T: DeserializeOwned>(text: &str) -> Result<T, ValidationError>
 struct Wording {
     /// What the body is called in "invalid JSON: data after the …".
     body: &'static str,
-    /// A repeated field is named in `field` as an unknown one is (otherwise `field` is
-    /// the path of the object that holds it).
-    names_duplicates: bool,
     /// serde's "trailing characters" at a field is reported as a fixed-length array
     /// given too many elements.
     fixed_arrays: bool,
@@ -35,14 +32,12 @@ struct Wording {
 /// The light-curve request (`POST /v1/lightcurves`, jobs, the command line).
 const REQUEST: Wording = Wording {
     body: "request",
-    names_duplicates: true,
     fixed_arrays: true,
 };
 
 /// Any other body (the BRDF fit).
 const OTHER_BODY: Wording = Wording {
     body: "body",
-    names_duplicates: false,
     fixed_arrays: false,
 };
 
@@ -77,13 +72,7 @@ fn field_error(
     let named_in = message
         .strip_prefix("unknown field `")
         .or_else(|| message.strip_prefix("missing field `"))
-        .or_else(|| {
-            if wording.names_duplicates {
-                message.strip_prefix("duplicate field `")
-            } else {
-                None
-            }
-        });
+        .or_else(|| message.strip_prefix("duplicate field `"));
     if let Some(rest) = named_in {
         if let Some(name) = rest.split('`').next() {
             let named = field == name || field.ends_with(&format!(".{name}"));
@@ -114,6 +103,11 @@ fn field_error(
             None => message,
         }
     };
+    // a body of the wrong type altogether (`true`, `[]`): the field is the body, as the
+    // HTTP layer names it for an empty or oversized one
+    if field.is_empty() && inner.is_data() {
+        field = "body".to_string();
+    }
     ValidationError { field, message }
 }
 
@@ -131,6 +125,13 @@ mod tests {
         assert_eq!(e.field, "object.colour");
         assert!(e.message.starts_with("unknown field `colour`"), "{e}");
         assert!(!e.message.contains(" at line "), "{e}");
+    }
+
+    #[test]
+    fn a_body_that_is_not_an_object_names_the_body() {
+        let e = parse_request("true").unwrap_err();
+        assert_eq!(e.field, "body", "{e}");
+        assert!(e.message.starts_with("invalid type: boolean `true`"), "{e}");
     }
 
     #[test]
@@ -159,7 +160,7 @@ mod tests {
     }
 
     #[test]
-    fn the_request_names_a_repeated_field_and_other_bodies_do_not() {
+    fn every_body_names_a_repeated_field() {
         let text = minimal_request().to_string();
         let twice = format!("{{\"tolerance\": 0.1, \"tolerance\": 0.1, {}", &text[1..]);
         let e = parse_request(&twice).unwrap_err();
@@ -172,7 +173,7 @@ mod tests {
             a: f64,
         }
         let e = parse_json::<Body>(r#"{"a": 1, "a": 2}"#).unwrap_err();
-        assert_eq!(e.field, "");
+        assert_eq!(e.field, "a");
         assert!(e.message.starts_with("duplicate field `a`"), "{e}");
     }
 

@@ -4,6 +4,7 @@
 //! `levenberg-marquardt` crate). The CLI and the service only call these functions.
 
 pub mod brdf;
+pub mod csv;
 pub mod lightcurve;
 pub mod params;
 pub mod solve;

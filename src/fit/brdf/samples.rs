@@ -84,17 +84,8 @@ pub fn parse_csv(text: &str) -> Result<Vec<Sample>, ValidationError> {
         "weight",
         "wavelength_um",
     ];
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let Some((_, header)) = lines.next() else {
-        return Err(ValidationError::new(
-            "samples",
-            "the file has no header and no samples",
-        ));
-    };
+    let (header, lines) =
+        crate::fit::csv::header_and_rows(text, "samples", "the file has no header and no samples")?;
     let columns: Vec<&str> = header.split(',').map(str::trim).collect();
     for c in &columns {
         if !KNOWN.contains(c) {

@@ -26,17 +26,8 @@ pub fn parse_observed_csv(
     text: &str,
     default_sigma: Option<f64>,
 ) -> Result<Vec<Observation>, ValidationError> {
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let Some((_, header)) = lines.next() else {
-        return Err(ValidationError::new(
-            "observed",
-            "the file has no header and no rows",
-        ));
-    };
+    let (header, lines) =
+        crate::fit::csv::header_and_rows(text, "observed", "the file has no header and no rows")?;
     let columns: Vec<&str> = header.split(',').map(str::trim).collect();
     let find = |names: &[&str]| columns.iter().position(|c| names.contains(c));
     let t_col = find(&["t", "t_s"]).ok_or_else(|| {

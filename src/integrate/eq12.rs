@@ -134,10 +134,10 @@ pub fn evaluate(
         sun_w_m2: light.sun_w_m2,
         earth: light.earthshine.shadow_dir,
     };
-    let lights = material_lights(p, epoch, &light);
+    let lights = material_lights(p, epoch, dirs.view, &light);
     let (decided, unshadowed) = lit_faces(p, &lights, &dirs, scratch);
     let (sums, rays) = visible_sums(p, &dirs, decided, unshadowed, scratch, cancelled);
-    (epoch_result(p, epoch, &light, sums), rays)
+    (epoch_result(p, epoch, range, dirs.view, &light, sums), rays)
 }
 
 /// Per material, what lights its faces at this epoch with what does not depend on the
@@ -145,9 +145,9 @@ pub fn evaluate(
 fn material_lights<'a>(
     p: &'a Prepared,
     epoch: &Epoch,
+    v: DVec3,
     light: &'a EpochLight,
 ) -> Vec<MaterialLight<'a>> {
-    let v = epoch.observer / epoch.observer.length();
     let sun_radius = sun::angular_radius(epoch.sun_distance_m);
     p.scene
         .materials
@@ -329,9 +329,14 @@ fn visible_sums(
 
 /// The epoch's result from its sums: irradiance at the observer (zero where the Earth
 /// is across the line of sight), magnitudes, geometry.
-fn epoch_result(p: &Prepared, epoch: &Epoch, light: &EpochLight, sums: Sums) -> EpochResult {
-    let range = epoch.observer.length();
-    let v = epoch.observer / range;
+fn epoch_result(
+    p: &Prepared,
+    epoch: &Epoch,
+    range: f64,
+    v: DVec3,
+    light: &EpochLight,
+    sums: Sums,
+) -> EpochResult {
     let r2 = range * range;
     let Sums {
         sun: sun_sum,

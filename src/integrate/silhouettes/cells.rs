@@ -113,6 +113,8 @@ pub struct Cutter {
     points: Vec<DVec2>,
     /// Every piece's candidate segments: index, and whether it is known to cross.
     cand: Vec<(u32, bool)>,
+    /// The right piece's candidates while the left's are written.
+    right: Vec<(u32, bool)>,
     pieces: Cells,
 }
 
@@ -185,7 +187,10 @@ impl Cutter {
             // beyond it on one side crosses that piece (it crossed this one) and not the
             // other
             let dir = (q - p).normalize_or_zero();
+            // each candidate classified once: the left piece's list goes straight into
+            // `cand`, the right one's after it
             let left_at = self.cand.len();
+            self.right.clear();
             for k in ca + 1..kept {
                 let (i, _) = self.cand[k];
                 let (a, b) = segs[i as usize];
@@ -193,22 +198,14 @@ impl Cutter {
                 if sa.min(sb) > 2.0 * tol {
                     self.cand.push((i, true));
                 } else if sa.max(sb) < -2.0 * tol {
+                    self.right.push((i, true));
                 } else {
                     self.cand.push((i, false));
+                    self.right.push((i, false));
                 }
             }
             let right_at = self.cand.len();
-            for k in ca + 1..kept {
-                let (i, _) = self.cand[k];
-                let (a, b) = segs[i as usize];
-                let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
-                if sa.min(sb) > 2.0 * tol {
-                } else if sa.max(sb) < -2.0 * tol {
-                    self.cand.push((i, true));
-                } else {
-                    self.cand.push((i, false));
-                }
-            }
+            self.cand.extend_from_slice(&self.right);
             let end = self.cand.len();
             for (side, cand) in [(0, (left_at, right_at)), (1, (right_at, end))] {
                 let s = self.points.len();

@@ -277,7 +277,6 @@ fn visible_sums(
                     silhouettes,
                     lf.face as usize,
                     lf.area,
-                    &p.faces.faces[lf.face as usize].triangles,
                     lf.sun > 0.0,
                     lf.earth > 0.0,
                 );

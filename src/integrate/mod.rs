@@ -66,9 +66,9 @@ pub enum Occlusion<'a> {
     /// by face.
     PerFace(Box<Visibility>),
     /// The silhouette method (what `auto` takes for a non-convex mesh).
-    Silhouettes(silhouettes::Silhouettes<'a>),
+    Silhouettes(Box<silhouettes::Silhouettes<'a>>),
     /// The `image` method's pixel sampler.
-    Image(self::image::ImageView),
+    Image(Box<self::image::ImageView>),
 }
 
 /// Everything computed once per request.
@@ -145,9 +145,9 @@ impl<'a> Prepared<'a> {
         let occlusion = if let Some(v) = visibility {
             Occlusion::PerFace(Box::new(v))
         } else if scene.method == Method::Image {
-            Occlusion::Image(self::image::ImageView::build(scene, &faces))
+            Occlusion::Image(Box::new(self::image::ImageView::build(scene, &faces)))
         } else if scene.method == Method::Silhouette || (scene.method == Method::Auto && !convex) {
-            Occlusion::Silhouettes(silhouettes::Silhouettes::build(scene, &faces))
+            Occlusion::Silhouettes(Box::new(silhouettes::Silhouettes::build(scene, &faces)))
         } else {
             Occlusion::None
         };

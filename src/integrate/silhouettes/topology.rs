@@ -1,13 +1,12 @@
-//! The mesh as a surface, built once per request: its edges (with the one or two
-//! triangles beside each), which faces meet across which edge, which connected pieces are
-//! closed, and where separate pieces touch or cross (the *contacts*).
+//! The mesh as a surface, built once per request: its edges (with the faces beside each
+//! and a point of each of those faces), which faces meet across which edge, which
+//! connected pieces are open, and where separate pieces touch or cross (the *contacts*).
 //!
-//! Along a direction d, what a face sees can change only across the shadow of an edge
-//! where the surface folds over as seen along d (a *silhouette* edge, or an open
-//! surface's border), or across a line where another piece of the mesh meets the face's
-//! plane inside the face (a contact: a boom's foot on a bus). The first kind depends on
-//! d and is found per epoch ([`super::grid`]); the second is fixed in the body frame and
-//! found here.
+//! Along a direction d, how many sheets of the surface lie above a point of a face
+//! changes only across the shadow of an edge where the surface folds over as seen along
+//! d (or an open surface's border): its *jump* ([`Edge::jump`]) is not zero there. Or
+//! across a line where another piece of the mesh meets the face's plane inside the face
+//! (a contact: a boom's foot on a bus), fixed in the body frame and found here.
 
 use crate::geometry::union_find::{find, union};
 use crate::geometry::{Faces, Mesh};
@@ -17,8 +16,10 @@ use rayon::prelude::*;
 /// No triangle (a border edge's missing second side).
 pub const NONE: u32 = u32::MAX;
 
-/// An edge of the welded mesh that can fold along some direction: between two faces, or
-/// on a border (an edge inside a face, between coplanar triangles, never does).
+/// An edge of the welded mesh between two faces, or along one face's border (an edge
+/// inside a face, between coplanar triangles of one face, is none). Where more than two
+/// triangles meet, each is given an edge of its own with no second face: the sheets
+/// beside such an edge count one by one.
 #[derive(Debug, Clone, Copy)]
 pub struct Edge {
     /// Its ends, m.
@@ -27,14 +28,106 @@ pub struct Edge {
     /// The faces on either side; `f1` is [`NONE`] on a border.
     pub f0: u32,
     pub f1: u32,
-    /// The two triangles run along the edge the same way (their normals disagree about
-    /// which side is out), or more than two triangles meet here: the edge counts as a
-    /// fold along every direction.
-    pub always: bool,
+    /// A point of each face off the edge's line (the third corner of a triangle along
+    /// it), m: which side of the edge each face lies on, seen along a direction.
+    pub in0: DVec3,
+    pub in1: DVec3,
     /// A valley of a closed, outward-facing piece: the surface turns inward across it,
-    /// so along any direction its shadow runs inside the solid on both sides of the
-    /// edge and never bounds what a face sees (only ridges and borders do).
+    /// so along any direction its shadow runs inside the solid on both sides of it:
+    /// the count changes across it, but never to or from zero (see
+    /// [`super::lines::Line::bounds`]).
     pub valley: bool,
+    /// Its two triangles wind the same way along it (a mesh whose orientation flips
+    /// here): two faces that both face along a direction may then lie on one side of
+    /// it, folded over, so facing alone does not say that nothing folds here.
+    pub flipped: bool,
+}
+
+impl Edge {
+    /// How many more sheets lie above a point just left of the edge's shadow than just
+    /// right of it, seen along `d` (left of a → b in the plane across d with basis
+    /// `(u, w)`, u × w = d); `blocks(face)` says whether a face's sheet counts along d
+    /// (it faces along d, or belongs to an open piece), `faces_on(face)` that its
+    /// plane is not edge-on to d. Zero for an edge along which the surface does not
+    /// fold over as seen along d.
+    #[inline]
+    pub fn jump(&self, u: DVec3, w: DVec3, blocks: impl Fn(u32) -> bool) -> i32 {
+        let pa = glam::DVec2::new(self.a.dot(u), self.a.dot(w));
+        let pb = glam::DVec2::new(self.b.dot(u), self.b.dot(w));
+        let side = |p: DVec3| {
+            let s = (pb - pa).perp_dot(glam::DVec2::new(p.dot(u), p.dot(w)) - pa);
+            if s > 0.0 {
+                1
+            } else if s < 0.0 {
+                -1
+            } else {
+                0
+            }
+        };
+        let mut j = 0;
+        if blocks(self.f0) {
+            j += side(self.in0);
+        }
+        if self.f1 != NONE && blocks(self.f1) {
+            j += side(self.in1);
+        }
+        j
+    }
+}
+
+/// Where another piece meets a face: a segment in the face's plane (m) and the other
+/// piece's triangle (its corners, m, and its face) that meets the face along it. Above
+/// the face, that triangle is a sheet on one side of the segment: the count changes
+/// across it as across a fold ([`Contact::jump`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Contact {
+    pub a: DVec3,
+    pub b: DVec3,
+    pub other: [DVec3; 3],
+    pub face: u32,
+}
+
+impl Contact {
+    /// How many more sheets lie just left of the segment than just right of it (seen
+    /// along `d` in the plane's coordinates of a face with unit normal `n` through `o`;
+    /// `to2` maps a point of that plane to them); `blocks`: whether the other face's
+    /// sheet counts along d. Zero when the other triangle lies below the plane along d.
+    pub fn jump(
+        &self,
+        n: DVec3,
+        o: DVec3,
+        d: DVec3,
+        eps: f64,
+        blocks: bool,
+        to2: impl Fn(DVec3) -> glam::DVec2,
+    ) -> i32 {
+        if !blocks {
+            return 0;
+        }
+        let nd = n.dot(d);
+        // the other triangle's corners above the plane, along d
+        let (mut sum, mut k) = (DVec3::ZERO, 0);
+        for v in self.other {
+            if n.dot(v - o) / nd > eps {
+                sum += v;
+                k += 1;
+            }
+        }
+        if k == 0 {
+            return 0;
+        }
+        let c = sum / k as f64;
+        let onto = |x: DVec3| to2(x - d * (n.dot(x - o) / nd));
+        let (pa, pb, pc) = (onto(self.a), onto(self.b), onto(c));
+        let s = (pb - pa).perp_dot(pc - pa);
+        if s > 0.0 {
+            1
+        } else if s < 0.0 {
+            -1
+        } else {
+            0
+        }
+    }
 }
 
 /// The surface's structure (see the module doc).
@@ -47,10 +140,11 @@ pub struct Topology {
     /// Per face: its piece is open (a border, a non-manifold or inconsistently wound
     /// edge) or its material is two-sided, so it may block a ray whichever way it faces.
     pub open: Vec<bool>,
-    /// Per face: segments where another piece of the mesh meets the face (m, in the
-    /// face's plane), CSR as `adjacent`.
+    /// Per face: where another piece of the mesh meets the face: segments (m, in the
+    /// face's plane), each with the other piece's triangle that meets it there (CSR as
+    /// `adjacent`).
     pub contacts_at: Vec<u32>,
-    pub contacts: Vec<(DVec3, DVec3)>,
+    pub contacts: Vec<Contact>,
 }
 
 impl Topology {
@@ -85,17 +179,30 @@ impl Topology {
                     welded[tri[k] as usize] == wa && welded[tri[(k + 1) % 3] as usize] == wb
                 })
             };
+            // triangle t's corner off the edge
+            let third = |t: u32| {
+                let tri = mesh.triangles[t as usize];
+                let v = tri
+                    .iter()
+                    .copied()
+                    .find(|&v| welded[v as usize] != wa && welded[v as usize] != wb)
+                    .unwrap_or(tri[0]);
+                mesh.vertices[v as usize]
+            };
+            let single = |t: u32| Edge {
+                a,
+                b,
+                f0: face(t),
+                f1: NONE,
+                in0: third(t),
+                in1: third(t),
+                valley: false,
+                flipped: false,
+            };
             match shared.len() {
                 1 => {
                     bad_triangles.push(t0);
-                    edges.push(Edge {
-                        a,
-                        b,
-                        f0: face(t0),
-                        f1: NONE,
-                        always: true,
-                        valley: false,
-                    });
+                    edges.push(single(t0));
                     ends.push((wa, wb));
                 }
                 2 => {
@@ -110,18 +217,16 @@ impl Topology {
                         // inward here (checked against the piece below)
                         let [p0, p1, p2] = mesh.corners(t0 as usize);
                         let n0 = (p1 - p0).cross(p2 - p0);
-                        let off = mesh.triangles[t1 as usize]
-                            .iter()
-                            .map(|&v| mesh.vertices[v as usize])
-                            .map(|v| n0.dot(v - a))
-                            .fold(0.0, |m: f64, h| if h.abs() > m.abs() { h } else { m });
+                        let off = n0.dot(third(t1) - a);
                         edges.push(Edge {
                             a,
                             b,
                             f0: face(t0),
                             f1: face(t1),
-                            always: flipped,
+                            in0: third(t0),
+                            in1: third(t1),
                             valley: !flipped && off > tol * n0.length(),
+                            flipped,
                         });
                         ends.push((wa, wb));
                     }
@@ -131,17 +236,9 @@ impl Topology {
                         union(&mut parent, w[0].2, w[1].2);
                     }
                     bad_triangles.extend(shared.iter().map(|s| s.2));
-                    // every pair meets here: one edge per neighbouring pair keeps the
-                    // faces' adjacency and the fold (always) for the shadow search
-                    for w in shared.windows(2) {
-                        edges.push(Edge {
-                            a,
-                            b,
-                            f0: face(w[0].2),
-                            f1: face(w[1].2),
-                            always: true,
-                            valley: false,
-                        });
+                    // more than two sheets meet here: each counts on its own side
+                    for s in shared {
+                        edges.push(single(s.2));
                         ends.push((wa, wb));
                     }
                 }
@@ -155,8 +252,8 @@ impl Topology {
         for t in 0..nt as u32 {
             open[face(t) as usize] |= open_root[find(&mut parent, t) as usize];
         }
-        // a valley bounds nothing only on a closed piece whose normals point out of its
-        // solid (positive volume) and whose faces are one-sided
+        // a valley keeps its shadow inside a solid only on a closed piece whose normals
+        // point out of it (positive volume) and whose faces are one-sided
         let mut volume = vec![0.0f64; nt];
         for t in 0..nt as u32 {
             let [p0, p1, p2] = mesh.corners(t as usize);
@@ -199,8 +296,8 @@ impl Topology {
         &self.adjacent[self.adjacent_at[face] as usize..self.adjacent_at[face + 1] as usize]
     }
 
-    /// Where other pieces of the mesh meet `face` (segments in its plane, m).
-    pub fn contacts_of(&self, face: usize) -> &[(DVec3, DVec3)] {
+    /// Where other pieces of the mesh meet `face`.
+    pub fn contacts_of(&self, face: usize) -> &[Contact] {
         &self.contacts[self.contacts_at[face] as usize..self.contacts_at[face + 1] as usize]
     }
 }
@@ -210,7 +307,7 @@ impl Topology {
 /// meets the next along one edge, not hundreds. Its shadow is the same line, so nothing
 /// changes but the count of shadows to search and cut along.
 fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec<Edge> {
-    let key = |e: &Edge| (e.f0.min(e.f1), e.f0.max(e.f1), e.always, e.valley);
+    let key = |e: &Edge| (e.f0.min(e.f1), e.f0.max(e.f1), e.valley, e.flipped);
     let mut order: Vec<u32> = (0..edges.len() as u32).collect();
     order.sort_by_key(|&i| key(&edges[i as usize]));
     let mut out = Vec::with_capacity(edges.len());
@@ -272,12 +369,20 @@ fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec
                 cur = g;
             }
             let e = edges[i as usize];
+            let (f0, f1, in0, in1) = if e.f0 <= e.f1 {
+                (e.f0, e.f1, e.in0, e.in1)
+            } else {
+                (e.f1, e.f0, e.in1, e.in0)
+            };
             out.push(Edge {
                 a: vertices[start as usize],
                 b: vertices[end as usize],
-                f0: e.f0.min(e.f1),
-                f1: e.f0.max(e.f1),
-                ..e
+                f0,
+                f1,
+                in0,
+                in1,
+                valley: e.valley,
+                flipped: e.flipped,
             });
         }
     }
@@ -304,7 +409,7 @@ fn contact_segments(
     welded: &[u32],
     tri_face: &[u32],
     tol: f64,
-) -> Vec<(u32, (DVec3, DVec3))> {
+) -> Vec<(u32, Contact)> {
     let nt = mesh.triangles.len();
     if nt < 2 {
         return Vec::new();
@@ -381,7 +486,7 @@ fn contact_segments(
             (z - a + glam::UVec3::ONE).element_product()
         })
         .collect();
-    let mut pairs: Vec<(u32, u32, (DVec3, DVec3))> = (0..nt)
+    let pairs: Vec<(u32, u32, (DVec3, DVec3))> = (0..nt)
         .into_par_iter()
         .map_init(
             || (vec![u32::MAX; nt], Vec::new()),
@@ -425,11 +530,58 @@ fn contact_segments(
         )
         .flatten()
         .collect();
-    pairs.sort_unstable_by_key(|p| (p.0, p.1));
-    let mut out = Vec::with_capacity(2 * pairs.len());
-    for (s, t, seg) in pairs {
-        out.push((tri_face[s as usize], seg));
-        out.push((tri_face[t as usize], seg));
+    // Each contact seen from both sides: (receiving face, other triangle, segment).
+    let mut seen: Vec<(u32, u32, (DVec3, DVec3))> = Vec::with_capacity(2 * pairs.len());
+    for &(s, t, seg) in &pairs {
+        seen.push((tri_face[s as usize], t, seg));
+        seen.push((tri_face[t as usize], s, seg));
+    }
+    // A face of several triangles meets another triangle along one line (the triangle
+    // across the face's plane), found once per triangle of the face that it touches: where
+    // that line runs along an edge inside the face, both triangles beside the edge find
+    // the same piece, and counting it twice would double its jump. So the pieces of one
+    // face and one other triangle are joined where they overlap.
+    seen.sort_unstable_by_key(|c| (c.0, c.1));
+    let mut out = Vec::with_capacity(seen.len());
+    let mut spans: Vec<(f64, f64)> = Vec::new();
+    for group in seen.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        let (face, other) = (group[0].0, group[0].1 as usize);
+        let contact = |a: DVec3, b: DVec3| {
+            (
+                face,
+                Contact {
+                    a,
+                    b,
+                    other: corners[other],
+                    face: tri_face[other],
+                },
+            )
+        };
+        if group.len() == 1 {
+            let (a, b) = group[0].2;
+            out.push(contact(a, b));
+            continue;
+        }
+        let (o, e) = (
+            group[0].2 .0,
+            (group[0].2 .1 - group[0].2 .0).normalize_or_zero(),
+        );
+        spans.clear();
+        spans.extend(group.iter().map(|&(_, _, (a, b))| {
+            let (s, t) = ((a - o).dot(e), (b - o).dot(e));
+            (s.min(t), s.max(t))
+        }));
+        spans.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        let mut cur = spans[0];
+        for &(lo, hi) in &spans[1..] {
+            if lo <= cur.1 + tol {
+                cur.1 = cur.1.max(hi);
+            } else {
+                out.push(contact(o + e * cur.0, o + e * cur.1));
+                cur = (lo, hi);
+            }
+        }
+        out.push(contact(o + e * cur.0, o + e * cur.1));
     }
     out
 }
@@ -535,6 +687,38 @@ mod tests {
         assert!(((p - q).length() - 0.2).abs() < 1e-12);
     }
 
+    #[test]
+    fn a_post_standing_on_the_diagonal_inside_a_face_meets_it_once() {
+        // a square plate of two triangles (one face) whose shared diagonal runs under
+        // the foot of a vertical triangle: both plate triangles find the same segment
+        let vertices = vec![
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(-1.0, 1.0, 0.0),
+            DVec3::new(-0.5, -0.5, 0.0),
+            DVec3::new(0.5, 0.5, 0.0),
+            DVec3::new(0.0, 0.0, 1.0),
+        ];
+        let mesh = Mesh {
+            vertices,
+            triangles: vec![[0, 1, 2], [0, 2, 3], [4, 5, 6]],
+            material_ids: vec![0; 3],
+        };
+        let t = topology_of(&mesh, false);
+        let faces = Faces::build(&mesh, true);
+        let plate = (0..faces.len())
+            .find(|&f| faces.faces[f].triangles.len() == 2)
+            .expect("the plate is one face");
+        let c = t.contacts_of(plate);
+        assert_eq!(c.len(), 1, "{c:?}");
+        assert!(((c[0].a - c[0].b).length() - 2f64.sqrt()).abs() < 1e-12);
+        // and the post meets the plate once on its side too (one triangle each side of
+        // the diagonal: two contacts, with the two plate triangles)
+        let post = 1 - plate;
+        assert_eq!(t.contacts_of(post).len(), 2);
+    }
+
     /// The topology of `mesh` (faces merged), with every face one-sided or two-sided.
     fn topology_of(mesh: &Mesh, two_sided: bool) -> Topology {
         let faces = Faces::build(mesh, true);
@@ -631,7 +815,7 @@ mod tests {
         for (l, w) in lengths.iter().zip(want) {
             assert!((l - w).abs() < 1e-12, "{lengths:?}");
         }
-        assert!(t.edges.iter().all(|e| !e.valley && !e.always));
+        assert!(t.edges.iter().all(|e| !e.valley));
         // each side meets its four neighbours
         for f in 0..6 {
             assert_eq!(t.neighbours(f).len(), 4);

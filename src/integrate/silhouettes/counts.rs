@@ -1,0 +1,246 @@
+//! The flood of counts along one direction d: how many sheets of the surface lie above
+//! each receiving face (0: it sees out along d).
+//!
+//! The count is the same on both sides of an edge between two receiving faces (nothing
+//! folds there), and changes along a face only across the fold lines that cross it
+//! ([`super::lines`]), by each line's jump. So one ray ([`super::rays::Rays::count`])
+//! gives the count of a whole connected region of receivers, and the flood carries it:
+//! a patch that no line reaches has one count; a face that lines cross keeps a point of
+//! its plane with the count there (its *reference*), from which the count anywhere on
+//! it is the reference's plus the jumps of the lines a straight path crosses
+//! ([`super::lines::crossed`]); and the count handed across an edge is taken at a point
+//! of the edge clear of the lines. No face is decided by a ray of its own unless it is
+//! the first of its region.
+
+use super::lines::{clearance, crossed};
+use super::{Direction, Silhouettes, CLEAN, CROSSED, DARK_ONLY, DIRTY, RAYS, UNCROSSED, UNKNOWN};
+use glam::DVec3;
+
+/// A unit of the flood: a clean patch, or a receiving face of a patch lines reach.
+#[derive(Clone, Copy)]
+pub(super) enum Unit {
+    Patch(u32),
+    Face(u32),
+}
+
+impl Silhouettes<'_> {
+    /// Gives every clean patch and every receiving face of the other patches its count
+    /// (or reference) along `dir`'s direction: a ray for the first unit of each
+    /// connected region, the flood for the rest. Returns the rays cast.
+    pub(super) fn flood(&self, dir: &mut Direction) -> u64 {
+        let mut rays = 0;
+        let np = self.patches.len();
+        for p in 0..np {
+            match dir.patch[p] {
+                CLEAN if dir.patch_count[p] == UNKNOWN => {
+                    let f = self.patches.faces_of(p)[0] as usize;
+                    let (count, n) = self.seed_count(dir, f, self.polys.inside[f]);
+                    rays += n;
+                    dir.patch_count[p] = count;
+                    if count != DARK_ONLY {
+                        self.spread(dir, Unit::Patch(p as u32));
+                    }
+                }
+                DIRTY => {
+                    for &f in self.patches.faces_of(p) {
+                        let f = f as usize;
+                        if !matches!(dir.face[f], UNCROSSED | CROSSED)
+                            || dir.face_count[f] != UNKNOWN
+                        {
+                            continue;
+                        }
+                        rays += self.seed_face(dir, f);
+                        if dir.face[f] != RAYS && dir.face_count[f] != DARK_ONLY {
+                            self.spread(dir, Unit::Face(f as u32));
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        rays
+    }
+
+    /// The count at point `x` of face `f` by a ray (retried from nearby points when a
+    /// hit falls on a polygon's edge); [`DARK_ONLY`] when no count came out but the ray
+    /// was blocked. Returns the count and the rays cast.
+    fn seed_count(&self, dir: &Direction, f: usize, x: DVec3) -> (i32, u64) {
+        let d = dir.across.d;
+        let points = self.seed_points(f, x);
+        let mut rays = 0;
+        for x in points {
+            rays += 1;
+            if let Ok(n) = self.rays.count(
+                &self.polys,
+                &self.topo.open,
+                x,
+                d,
+                f as u32,
+                self.eps,
+                self.eps,
+            ) {
+                return (n as i32, rays);
+            }
+        }
+        rays += 1;
+        let blocked = self
+            .rays
+            .blocked(&self.polys, &self.topo.open, x, d, f as u32, self.eps);
+        (if blocked { DARK_ONLY } else { 0 }, rays)
+    }
+
+    /// `x` and a few other points inside face `f`'s first polygon, to try in turn.
+    fn seed_points(&self, f: usize, x: DVec3) -> impl Iterator<Item = DVec3> + '_ {
+        let k = self.polys.of(f).start;
+        let c = self.polys.corners3(k);
+        let centre = c.iter().copied().sum::<DVec3>() / c.len() as f64;
+        std::iter::once(x).chain(c.iter().take(3).map(move |&v| centre + (v - centre) * 0.37))
+    }
+
+    /// A crossed or uncrossed face's count (and a crossed face's reference) by a ray;
+    /// a crossed face with no point clear of its lines, or no count, is left to rays per
+    /// cell. Returns the rays cast.
+    fn seed_face(&self, dir: &mut Direction, f: usize) -> u64 {
+        if dir.face[f] == UNCROSSED {
+            let (count, n) = self.seed_count(dir, f, self.polys.inside[f]);
+            dir.face_count[f] = count;
+            return n;
+        }
+        let lines = dir.lines_of(f);
+        let margin = self.margin(f);
+        let at = self
+            .seed_points(f, self.polys.inside[f])
+            .map(|x| (x, self.polys.to2(f, x)))
+            .find(|&(_, q)| clearance(lines, q) > margin);
+        let Some((x, q)) = at else {
+            dir.face[f] = RAYS;
+            return 0;
+        };
+        let (count, n) = self.seed_count(dir, f, x);
+        if count == DARK_ONLY {
+            dir.face[f] = RAYS;
+        } else {
+            dir.face_count[f] = count;
+            dir.face_ref[f] = q;
+        }
+        n
+    }
+
+    /// How far (m) a point must stay from a face's lines for its count to be trusted.
+    fn margin(&self, f: usize) -> f64 {
+        1e-7 * self.polys.radius[f] + 10.0 * self.eps
+    }
+
+    /// Floods from `start` (whose count is known) to every unit joined to it.
+    fn spread(&self, dir: &mut Direction, start: Unit) {
+        let mut queue = std::mem::take(&mut dir.queue);
+        queue.clear();
+        queue.push(start);
+        while let Some(unit) = queue.pop() {
+            match unit {
+                Unit::Patch(p) => {
+                    let count = dir.patch_count[p as usize];
+                    for link in self.patches.links_of(p as usize) {
+                        let q = link.patch as usize;
+                        match dir.patch[q] {
+                            // a clean patch beside a clean one: both face along d with
+                            // sheets of one kind (or the two-sided faces of both face
+                            // one way), so nothing folds between them: any edge serves
+                            CLEAN => {
+                                if dir.patch_count[q] != UNKNOWN {
+                                    continue;
+                                }
+                                let &(e, _, out) = &self.patches.exits_of(link)[0];
+                                if let Some(next) = self.hand_over(dir, None, count, e, out) {
+                                    queue.push(next);
+                                }
+                            }
+                            DIRTY => {
+                                for &(e, _, out) in self.patches.exits_of(link) {
+                                    if let Some(next) = self.hand_over(dir, None, count, e, out) {
+                                        queue.push(next);
+                                    }
+                                }
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+                Unit::Face(f) => {
+                    let count = dir.face_count[f as usize];
+                    for &(g, e) in self.topo.neighbours(f as usize) {
+                        if let Some(next) = self.hand_over(dir, Some(f), count, e, g) {
+                            queue.push(next);
+                        }
+                    }
+                }
+            }
+        }
+        dir.queue = queue;
+    }
+
+    /// Hands the count across edge `e` to face `g`'s unit when it needs one: from face
+    /// `from` (a crossed face's count is taken at a point of the edge clear of its
+    /// lines), or from a clean patch's uniform `count`. Returns the unit that got it.
+    fn hand_over(
+        &self,
+        dir: &mut Direction,
+        from: Option<u32>,
+        count: i32,
+        e: u32,
+        g: u32,
+    ) -> Option<Unit> {
+        let g = g as usize;
+        let p = self.patches.of_face[g] as usize;
+        let target = match dir.patch[p] {
+            CLEAN if dir.patch_count[p] == UNKNOWN => Unit::Patch(p as u32),
+            DIRTY if matches!(dir.face[g], UNCROSSED | CROSSED) && dir.face_count[g] == UNKNOWN => {
+                Unit::Face(g as u32)
+            }
+            _ => return None,
+        };
+        let edge = &self.topo.edges[e as usize];
+        let across = &dir.across;
+        if !super::folds::same_way(&self.topo, &self.polys.normal, edge, across.d)
+            && edge.jump(across.u, across.w, |f| self.blocks(f as usize, across.d)) != 0
+        {
+            return None;
+        }
+        let src_crossed = from.filter(|&f| dir.face[f as usize] == CROSSED);
+        let dst_crossed = matches!(target, Unit::Face(_)) && dir.face[g] == CROSSED;
+        if src_crossed.is_none() && !dst_crossed {
+            match target {
+                Unit::Patch(p) => dir.patch_count[p as usize] = count,
+                Unit::Face(g) => dir.face_count[g as usize] = count,
+            }
+            return Some(target);
+        }
+        // a point of the edge clear of the lines on both sides
+        let (a, b) = (edge.a, edge.b);
+        let at = [0.5, 0.3, 0.7, 0.15, 0.85]
+            .into_iter()
+            .map(|t| a + (b - a) * t)
+            .find(|&x| {
+                let clear =
+                    |f: usize| clearance(dir.lines_of(f), self.polys.to2(f, x)) > self.margin(f);
+                src_crossed.is_none_or(|f| clear(f as usize)) && (!dst_crossed || clear(g))
+            })?;
+        let count = match src_crossed {
+            Some(f) => {
+                let f = f as usize;
+                count + crossed(dir.lines_of(f), dir.face_ref[f], self.polys.to2(f, at))
+            }
+            None => count,
+        };
+        match target {
+            Unit::Patch(p) => dir.patch_count[p as usize] = count,
+            Unit::Face(g) => {
+                dir.face_count[g as usize] = count;
+                if dst_crossed {
+                    dir.face_ref[g as usize] = self.polys.to2(g as usize, at);
+                }
+            }
+        }
+        Some(target)
+    }
+}

@@ -1,0 +1,150 @@
+//! The fold edges along one direction d: the edges across whose shadow the number of
+//! sheets above a point changes ([`super::topology::Edge::jump`] not zero): where the
+//! surface folds over as seen along d (a ridge or a valley with one side facing along d
+//! and the other away), an open surface's border, or where more than two sheets meet.
+//!
+//! Only a patch that faces both ways along d can hold a fold inside it, and only a rim
+//! between patches that face differently can be one: the search visits those, not every
+//! edge ([`super::patches`]).
+
+use super::patches::{Facing, Patches};
+use super::topology::{Edge, Topology, NONE};
+use glam::{DVec2, DVec3};
+
+/// A fold edge along d.
+#[derive(Debug, Clone, Copy)]
+pub struct Fold {
+    /// Its ends, m.
+    pub a: DVec3,
+    pub b: DVec3,
+    /// Its ends across d (in the basis (u, w), u × w = d), m.
+    pub pa: DVec2,
+    pub pb: DVec2,
+    /// Its highest point along d, m.
+    pub top: f64,
+    /// How many more sheets lie above a point just left of pa → pb than just right of it.
+    pub jump: i32,
+    /// Not a valley: a face may turn from lit to dark across its shadow.
+    pub bounds: bool,
+}
+
+/// Finds every fold along unit `d` (basis across it `(u, w)`, u × w = d); `facing`: each
+/// patch's facing along d; `normal`: each face's unit normal; `blocks(face)`: the face's
+/// sheet counts along d.
+#[allow(clippy::too_many_arguments)]
+pub fn find(
+    patches: &Patches,
+    topo: &Topology,
+    facing: &[Facing],
+    normal: &[DVec3],
+    d: DVec3,
+    u: DVec3,
+    w: DVec3,
+    blocks: impl Fn(u32) -> bool + Copy,
+    out: &mut Vec<Fold>,
+) {
+    out.clear();
+    let mut test = |e: u32| {
+        let edge = &topo.edges[e as usize];
+        if edge.f1 != NONE && same_way(topo, normal, edge, d) {
+            return;
+        }
+        let jump = edge.jump(u, w, blocks);
+        if jump != 0 {
+            out.push(Fold {
+                a: edge.a,
+                b: edge.b,
+                pa: DVec2::new(edge.a.dot(u), edge.a.dot(w)),
+                pb: DVec2::new(edge.b.dot(u), edge.b.dot(w)),
+                top: edge.a.dot(d).max(edge.b.dot(d)),
+                jump,
+                bounds: !edge.valley,
+            });
+        }
+    };
+    for p in 0..patches.len() {
+        let fp = facing[p];
+        if fp == Facing::Mixed {
+            for &e in patches.inner_of(p) {
+                test(e);
+            }
+        }
+        for &(e, q) in patches.rim_of(p) {
+            // two patches facing one way meet without a fold, unless they face away
+            // and only one of them blocks that way (an open piece's face beside a
+            // closed one's)
+            let plain = q != NONE
+                && fp != Facing::Mixed
+                && facing[q as usize] == fp
+                && (fp == Facing::Along || patches.open[p] == patches.open[q as usize]);
+            if !plain {
+                test(e);
+            }
+        }
+    }
+}
+
+/// Do the faces either side of `edge` both face along `d` or both away, with sheets of
+/// one kind (both open or both closed), and wind opposite ways along it? The surface does
+/// not fold over between them then: they lie on either side of the edge seen along d,
+/// and count alike.
+#[inline]
+pub fn same_way(topo: &Topology, normal: &[DVec3], edge: &Edge, d: DVec3) -> bool {
+    let (f, g) = (edge.f0 as usize, edge.f1 as usize);
+    let (a, b) = (normal[f].dot(d), normal[g].dot(d));
+    !edge.flipped
+        && topo.open[f] == topo.open[g]
+        && ((a > 1e-12 && b > 1e-12) || (a < -1e-12 && b < -1e-12))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{fixtures, polygons};
+    use super::*;
+    use crate::geometry::builtin::geodesic_sphere;
+
+    #[test]
+    fn on_a_closed_convex_mesh_the_folds_are_its_outline_edges() {
+        let mesh = geodesic_sphere(10, 1.5);
+        let b = fixtures::build(&mesh);
+        let normal = &b.polys.normal;
+        let mut out = Vec::new();
+        for d in fixtures::directions() {
+            let (u, w) = polygons::basis(d);
+            let facing: Vec<Facing> = (0..b.patches.len())
+                .map(|p| b.patches.facing(p, d))
+                .collect();
+            let blocks = |f: u32| normal[f as usize].dot(d) > 1e-12;
+            find(
+                &b.patches, &b.topo, &facing, normal, d, u, w, blocks, &mut out,
+            );
+            // by brute force over every edge: one face along d, the other away
+            let mut want: Vec<(u32, u32)> = b
+                .topo
+                .edges
+                .iter()
+                .filter(|e| blocks(e.f0) != blocks(e.f1))
+                .map(|e| (e.f0.min(e.f1), e.f0.max(e.f1)))
+                .collect();
+            want.sort_unstable();
+            assert!(!want.is_empty());
+            assert_eq!(out.len(), want.len());
+            for f in &out {
+                // one sheet more on one side than the other, never a valley on a convex
+                // solid, and its ends where the edge's are
+                assert_eq!(f.jump.abs(), 1);
+                assert!(f.bounds);
+                assert!((f.pa - DVec2::new(f.a.dot(u), f.a.dot(w))).length() < 1e-12);
+                let e = b
+                    .topo
+                    .edges
+                    .iter()
+                    .find(|e| e.a == f.a && e.b == f.b)
+                    .unwrap();
+                assert!(want
+                    .binary_search(&(e.f0.min(e.f1), e.f0.max(e.f1)))
+                    .is_ok());
+            }
+        }
+    }
+}

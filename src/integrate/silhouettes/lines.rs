@@ -1,0 +1,307 @@
+//! The fold lines along one direction d, binned across d ([`LineGrid`]), and the faces
+//! they cross ([`crossings`]): a fold's shadow falls on the faces below it whose
+//! polygons its projection along d crosses. Each crossing is kept as a line in the
+//! receiving face's own plane ([`Line`]), with the jump in the number of sheets across it.
+//!
+//! The grid holds the folds only (a few hundred to a few thousand), so building it costs
+//! nothing like binning the mesh; a patch asks it once for the folds over its box, and
+//! only a patch some fold passes over looks at its faces one by one.
+
+use super::folds::Fold;
+use super::polygons::{orient, segment_meets, Polygons};
+use glam::{DVec2, DVec3};
+
+/// A fold's shadow on a face, in the face's plane coordinates (m): crossing it from its
+/// right (of p → q) to its left adds `jump` sheets above the point.
+#[derive(Debug, Clone, Copy)]
+pub struct Line {
+    pub p: DVec2,
+    pub q: DVec2,
+    pub jump: i32,
+    /// Whether the face may turn from lit to dark across it. A valley's shadow does not:
+    /// the solid lies above both sides of it, so the count is at least 1 on both. Hence
+    /// on a part of a face that no bounding line crosses the count is zero everywhere or
+    /// nowhere: a face is cut along its bounding lines only, and a cell's count (at its
+    /// centroid, through every line) decides all of it.
+    pub bounds: bool,
+}
+
+/// The folds binned in a uniform grid across d.
+#[derive(Default)]
+pub struct LineGrid {
+    lo: DVec2,
+    inv_cell: f64,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    start: Vec<u32>,
+    items: Vec<u32>,
+    fill: Vec<u32>,
+}
+
+impl LineGrid {
+    /// Bins `folds` (each within `tol`, m, of its cells).
+    pub fn build(&mut self, folds: &[Fold], tol: f64) {
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for f in folds {
+            lo = lo.min(f.pa.min(f.pb));
+            hi = hi.max(f.pa.max(f.pb));
+        }
+        if folds.is_empty() {
+            lo = DVec2::ZERO;
+            hi = DVec2::ONE;
+        }
+        lo -= DVec2::splat(2.0 * tol);
+        hi += DVec2::splat(2.0 * tol);
+        let ext = (hi - lo).max(DVec2::splat(1e-300));
+        // about one fold a cell, at most 1024 cells a side
+        let n = folds.len().max(1) as f64;
+        let cell = (ext.x * ext.y / n).sqrt().max(ext.max_element() / 1024.0);
+        self.lo = lo;
+        self.cell = cell;
+        self.inv_cell = 1.0 / cell;
+        self.nx = ((ext.x / cell).ceil() as usize).clamp(1, 1024);
+        self.ny = ((ext.y / cell).ceil() as usize).clamp(1, 1024);
+        let cells = self.nx * self.ny;
+        self.start.clear();
+        self.start.resize(cells + 1, 0);
+        let (nx, ny, inv) = (self.nx, self.ny, self.inv_cell);
+        for f in folds {
+            let start = &mut self.start;
+            rows_of(nx, ny, lo, inv, f, tol, |c0, c1| {
+                for c in &mut start[c0 + 1..c1 + 2] {
+                    *c += 1;
+                }
+            });
+        }
+        for i in 0..cells {
+            self.start[i + 1] += self.start[i];
+        }
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.start[..cells]);
+        self.items.clear();
+        self.items.resize(self.start[cells] as usize, 0);
+        for (i, f) in folds.iter().enumerate() {
+            let (fill, items) = (&mut self.fill, &mut self.items);
+            let (nx, ny, lo, inv) = (self.nx, self.ny, self.lo, self.inv_cell);
+            rows_of(nx, ny, lo, inv, f, tol, |c0, c1| {
+                for c in &mut fill[c0..c1 + 1] {
+                    items[*c as usize] = i as u32;
+                    *c += 1;
+                }
+            });
+        }
+    }
+
+    fn cell_of(&self, p: DVec2) -> (usize, usize) {
+        cell_of(self.nx, self.ny, self.lo, self.inv_cell, p)
+    }
+
+    /// Calls `found(i)` for every fold binned in a cell that box `lo`–`hi` (m, across d)
+    /// touches; a fold may come more than once.
+    pub fn query(&self, lo: DVec2, hi: DVec2, mut found: impl FnMut(u32)) {
+        let (x0, y0) = self.cell_of(lo);
+        let (x1, y1) = self.cell_of(hi);
+        for y in y0..=y1 {
+            let row = y * self.nx;
+            let (a, b) = (
+                self.start[row + x0] as usize,
+                self.start[row + x1 + 1] as usize,
+            );
+            for &i in &self.items[a..b] {
+                found(i);
+            }
+        }
+    }
+}
+
+fn cell_of(nx: usize, ny: usize, lo: DVec2, inv: f64, p: DVec2) -> (usize, usize) {
+    let q = (p - lo) * inv;
+    (
+        (q.x.max(0.0) as usize).min(nx - 1),
+        (q.y.max(0.0) as usize).min(ny - 1),
+    )
+}
+
+/// The runs of cells, row by row, that fold `f` passes within `tol` of.
+fn rows_of(
+    nx: usize,
+    ny: usize,
+    lo: DVec2,
+    inv: f64,
+    f: &Fold,
+    tol: f64,
+    mut span: impl FnMut(usize, usize),
+) {
+    let (pa, pb) = (f.pa, f.pb);
+    let cell = 1.0 / inv;
+    let (_, y0) = cell_of(nx, ny, lo, inv, pa.min(pb) - DVec2::splat(tol));
+    let (_, y1) = cell_of(nx, ny, lo, inv, pa.max(pb) + DVec2::splat(tol));
+    let dy = pb.y - pa.y;
+    for y in y0..=y1 {
+        let (ylo, yhi) = (
+            lo.y + y as f64 * cell - tol,
+            lo.y + (y + 1) as f64 * cell + tol,
+        );
+        let (t0, t1) = if dy == 0.0 {
+            (0.0, 1.0)
+        } else {
+            let (ta, tb) = ((ylo - pa.y) / dy, (yhi - pa.y) / dy);
+            (ta.min(tb).max(0.0), ta.max(tb).min(1.0))
+        };
+        if t0 > t1 {
+            continue;
+        }
+        let (xa, xb) = (pa.x + (pb.x - pa.x) * t0, pa.x + (pb.x - pa.x) * t1);
+        let (x0, _) = cell_of(nx, ny, lo, inv, DVec2::new(xa.min(xb) - tol, ylo));
+        let (x1, _) = cell_of(nx, ny, lo, inv, DVec2::new(xa.max(xb) + tol, ylo));
+        let row = y * nx;
+        span(row + x0, row + x1);
+    }
+}
+
+/// What [`crossing`] needs of a direction: d, its basis across (u, w) with u × w = d,
+/// and the rounding scales.
+#[derive(Clone, Copy)]
+pub struct Across {
+    pub d: DVec3,
+    pub u: DVec3,
+    pub w: DVec3,
+    /// Height (m) above a face that counts as in front of it.
+    pub eps: f64,
+    /// Distance (m) within which a line counts as touching a face.
+    pub tol: f64,
+}
+
+/// The shadow of fold `fold` on face `f` when it crosses one of the face's polygons
+/// (within `tol`) above the face's plane, as a line in the face's plane. `across`: the
+/// face's corners across d when it is one polygon; the test is then made there, where
+/// distances are never longer than in the face's plane (so a line within `tol` of the
+/// face there is kept, never one within it in the plane lost).
+pub fn crossing(
+    polys: &Polygons,
+    f: usize,
+    fold: &Fold,
+    dir: &Across,
+    across: Option<&[DVec2]>,
+) -> Option<Line> {
+    let Across { d, eps, tol, .. } = *dir;
+    let n = polys.normal[f];
+    let o = polys.point[f];
+    let nd = n.dot(d);
+    // a receiver faces along d or against it, never edge-on: nd is not near zero
+    let inv_nd = 1.0 / nd;
+    // heights of the fold's ends above the face's plane, along d
+    let sa = n.dot(fold.a - o) * inv_nd;
+    let sb = n.dot(fold.b - o) * inv_nd;
+    if sa <= eps && sb <= eps {
+        return None;
+    }
+    // the part of the fold above the plane, as a range of its parameter
+    let (mut t0, mut t1) = (0.0, 1.0);
+    if sa <= eps {
+        t0 = (eps - sa) / (sb - sa);
+    } else if sb <= eps {
+        t1 = 1.0 - (eps - sb) / (sa - sb);
+    }
+    if let Some(corners) = across {
+        let e = fold.pb - fold.pa;
+        if !segment_meets(fold.pa + e * t0, fold.pa + e * t1, corners, tol, nd > 0.0) {
+            return None;
+        }
+    }
+    // along d onto the plane: linear in the fold's parameter, so its ends' images
+    // give the clipped part's
+    let (ea, eb) = (polys.to2(f, fold.a - d * sa), polys.to2(f, fold.b - d * sb));
+    let (p, q) = (ea + (eb - ea) * t0, ea + (eb - ea) * t1);
+    if across.is_none()
+        && !polys
+            .of(f)
+            .any(|k| segment_meets(p, q, polys.corners2(k), tol, true))
+    {
+        return None;
+    }
+    // The plane's coordinates turn the way (u, w) does seen along d when the face's
+    // normal faces along d: u_f × w_f = n, so the map between them has the sign of n·d.
+    let jump = if nd > 0.0 { fold.jump } else { -fold.jump };
+    Some(Line {
+        p,
+        q,
+        jump,
+        bounds: fold.bounds,
+    })
+}
+
+/// The sheets added to the count along the path from `x` to `y` (in a face's plane) by
+/// the lines it crosses. Ends shared by two lines (a polyline's joints) are put on one
+/// side of the path by one test, so a path through a joint crosses exactly one of them.
+#[inline]
+pub fn crossed(lines: &[Line], x: DVec2, y: DVec2) -> i32 {
+    let mut n = 0;
+    for l in lines {
+        let (sx, sy) = (orient(l.p, l.q, x) > 0.0, orient(l.p, l.q, y) > 0.0);
+        if sx == sy {
+            continue;
+        }
+        if (orient(x, y, l.p) > 0.0) == (orient(x, y, l.q) > 0.0) {
+            continue;
+        }
+        n += if sy { l.jump } else { -l.jump };
+    }
+    n
+}
+
+/// The least distance (m) from `x` to any of `lines`.
+pub fn clearance(lines: &[Line], x: DVec2) -> f64 {
+    lines
+        .iter()
+        .map(|l| {
+            let e = l.q - l.p;
+            let t = if e.length_squared() > 0.0 {
+                ((x - l.p).dot(e) / e.length_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (l.p + e * t - x).length()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_path_crosses_one_of_two_lines_that_share_an_end() {
+        // a polyline bent at (1, 0), jump 1 on its left
+        let j = DVec2::new(1.0, 0.0);
+        let lines = [
+            Line {
+                p: DVec2::new(0.0, -1.0),
+                q: j,
+                jump: 1,
+                bounds: true,
+            },
+            Line {
+                p: j,
+                q: DVec2::new(0.0, 1.0),
+                jump: 1,
+                bounds: true,
+            },
+        ];
+        // from outside the bend (right of both) to inside it, straight through the joint
+        let n = crossed(&lines, DVec2::new(2.0, 0.0), DVec2::new(0.0, 0.0));
+        assert_eq!(n, 1);
+        // and back
+        assert_eq!(
+            crossed(&lines, DVec2::new(0.0, 0.0), DVec2::new(2.0, 0.0)),
+            -1
+        );
+        // past the bend without crossing
+        assert_eq!(
+            crossed(&lines, DVec2::new(2.0, 2.0), DVec2::new(2.0, -2.0)),
+            0
+        );
+        assert!((clearance(&lines, DVec2::new(2.0, 0.0)) - 1.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,366 @@
+//! Patches: connected clusters of faces whose normals lie in a narrow cone, built once
+//! per request, so that per direction most of the mesh is handled a patch at a time.
+//!
+//! Along a direction d a patch's cone says at once whether all its faces face along d,
+//! all face away, or it is *mixed*. Only a mixed patch can hold an edge where the surface
+//! folds over as seen along d, so the search for shadow edges looks inside mixed patches
+//! and along the rims between patches that face differently, not at every edge; and a
+//! patch that faces along d as a whole and that no shadow line reaches is one unit of the
+//! flood of counts ([`super::counts`]). A finely meshed smooth surface thus costs per
+//! direction what its patches and its shadow lines cost, not what its faces cost.
+
+use super::polygons::Polygons;
+use super::topology::{Topology, NONE};
+use glam::DVec3;
+
+/// Most faces a patch holds.
+const MAX_FACES: usize = 16;
+/// Largest angle between a face's normal and its patch's first face's normal (cos).
+const MAX_TURN_COS: f64 = 0.94;
+
+/// How a patch faces along a direction.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Facing {
+    /// Every face's normal has n·d > 0.
+    Along,
+    /// Every face's normal has n·d < 0.
+    Away,
+    /// Some of each, or too close to tell.
+    Mixed,
+}
+
+/// A neighbouring patch and the edges into it (a range of [`Patches::exits`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Link {
+    pub patch: u32,
+    pub exits: (u32, u32),
+}
+
+/// The patches (see the module doc).
+pub struct Patches {
+    /// Per face: its patch.
+    pub of_face: Vec<u32>,
+    /// Per patch: its faces (CSR).
+    pub faces_at: Vec<u32>,
+    pub faces: Vec<u32>,
+    /// Per patch: the axis of the cone holding its normals and the sine of its half
+    /// angle (above 1 when no cone narrower than a hemisphere holds them).
+    pub axis: Vec<DVec3>,
+    pub sin_half: Vec<f64>,
+    /// Per patch: its box, as centre and half extents (m).
+    pub centre: Vec<DVec3>,
+    pub half: Vec<DVec3>,
+    /// Per patch: some face of it meets another piece inside it (a contact).
+    pub contacts: Vec<bool>,
+    /// Per patch: its faces' sheets count along every direction (an open piece, or
+    /// two-sided faces); a patch is all open or all closed (its faces are connected,
+    /// and one two-sidedness).
+    pub open: Vec<bool>,
+    /// Per patch: the edges between two of its own faces (CSR).
+    pub inner_at: Vec<u32>,
+    pub inner: Vec<u32>,
+    /// Per patch: the edges on its rim, each listed once over the whole mesh (in the
+    /// patch of the edge's first face), with the other side's patch ([`NONE`] on a
+    /// border) (CSR).
+    pub rim_at: Vec<u32>,
+    pub rim: Vec<(u32, u32)>,
+    /// Per patch: its neighbouring patches, each with the ways into it across an edge:
+    /// (edge, face inside, face outside), a range of `exits` (CSR).
+    pub links_at: Vec<u32>,
+    pub links: Vec<Link>,
+    pub exits: Vec<(u32, u32, u32)>,
+}
+
+impl Patches {
+    pub fn build(polys: &Polygons, topo: &Topology) -> Patches {
+        let nf = polys.faces();
+        let mut of_face = vec![NONE; nf];
+        let mut faces_at = vec![0u32];
+        let mut faces = Vec::with_capacity(nf);
+        let mut queue = std::collections::VecDeque::new();
+        // grown breadth first from each face not yet taken, in the faces' (spatial) order
+        for seed in 0..nf {
+            if of_face[seed] != NONE {
+                continue;
+            }
+            let p = (faces_at.len() - 1) as u32;
+            let n0 = polys.normal[seed];
+            let sided = polys.two_sided[seed];
+            of_face[seed] = p;
+            faces.push(seed as u32);
+            let start = faces.len() - 1;
+            queue.clear();
+            queue.push_back(seed as u32);
+            'grow: while let Some(f) = queue.pop_front() {
+                for &(g, _) in topo.neighbours(f as usize) {
+                    let gi = g as usize;
+                    if of_face[gi] != NONE
+                        || polys.two_sided[gi] != sided
+                        || polys.normal[gi].dot(n0) < MAX_TURN_COS
+                    {
+                        continue;
+                    }
+                    if faces.len() - start >= MAX_FACES {
+                        break 'grow;
+                    }
+                    of_face[gi] = p;
+                    faces.push(g);
+                    queue.push_back(g);
+                }
+            }
+            faces_at.push(faces.len() as u32);
+        }
+        let np = faces_at.len() - 1;
+        let members = |p: usize| &faces[faces_at[p] as usize..faces_at[p + 1] as usize];
+        let mut axis = Vec::with_capacity(np);
+        let mut sin_half = Vec::with_capacity(np);
+        let mut centre = Vec::with_capacity(np);
+        let mut half = Vec::with_capacity(np);
+        let mut contacts = Vec::with_capacity(np);
+        let mut open = Vec::with_capacity(np);
+        for p in 0..np {
+            let m = members(p);
+            let sum: DVec3 = m.iter().map(|&f| polys.normal[f as usize]).sum();
+            let a = sum.try_normalize().unwrap_or(polys.normal[m[0] as usize]);
+            let cos_min = m
+                .iter()
+                .map(|&f| polys.normal[f as usize].dot(a))
+                .fold(1.0f64, f64::min)
+                .clamp(-1.0, 1.0);
+            // the cone's half angle, widened a little for rounding
+            let half_angle = cos_min.acos() + 1e-9;
+            axis.push(a);
+            sin_half.push(if half_angle < std::f64::consts::FRAC_PI_2 {
+                half_angle.sin()
+            } else {
+                2.0
+            });
+            let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+            for &f in m {
+                for k in polys.of(f as usize) {
+                    for &q in polys.corners3(k) {
+                        lo = lo.min(q);
+                        hi = hi.max(q);
+                    }
+                }
+            }
+            centre.push((lo + hi) * 0.5);
+            half.push((hi - lo) * 0.5);
+            contacts.push(m.iter().any(|&f| !topo.contacts_of(f as usize).is_empty()));
+            open.push(topo.open[m[0] as usize]);
+        }
+        let mut inner_items = Vec::new();
+        let mut rim_items = Vec::new();
+        let mut exit_items = Vec::new();
+        for (i, e) in topo.edges.iter().enumerate() {
+            let p0 = of_face[e.f0 as usize];
+            let p1 = if e.f1 == NONE {
+                NONE
+            } else {
+                of_face[e.f1 as usize]
+            };
+            if p0 == p1 {
+                inner_items.push((p0, i as u32));
+            } else {
+                rim_items.push((p0, (i as u32, p1)));
+            }
+            if e.f1 != NONE && p0 != p1 {
+                exit_items.push((p0, (i as u32, e.f0, e.f1)));
+                exit_items.push((p1, (i as u32, e.f1, e.f0)));
+            }
+        }
+        let (inner_at, inner) = csr(np, inner_items);
+        let (rim_at, rim) = csr(np, rim_items);
+        // the exits grouped by the patch they lead into
+        exit_items.sort_by_key(|&(p, (_, _, out))| (p, of_face[out as usize]));
+        let mut links_at = vec![0u32; np + 1];
+        let mut links = Vec::new();
+        let exits: Vec<(u32, u32, u32)> = exit_items.iter().map(|x| x.1).collect();
+        let mut i = 0;
+        while i < exit_items.len() {
+            let (p, (_, _, out)) = exit_items[i];
+            let q = of_face[out as usize];
+            let mut j = i;
+            while j < exit_items.len()
+                && exit_items[j].0 == p
+                && of_face[exit_items[j].1 .2 as usize] == q
+            {
+                j += 1;
+            }
+            links.push(Link {
+                patch: q,
+                exits: (i as u32, j as u32),
+            });
+            links_at[p as usize + 1] += 1;
+            i = j;
+        }
+        for k in 0..np {
+            links_at[k + 1] += links_at[k];
+        }
+        Patches {
+            of_face,
+            faces_at,
+            faces,
+            axis,
+            sin_half,
+            centre,
+            half,
+            contacts,
+            open,
+            inner_at,
+            inner,
+            rim_at,
+            rim,
+            links_at,
+            links,
+            exits,
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.axis.len()
+    }
+
+    #[inline]
+    pub fn faces_of(&self, p: usize) -> &[u32] {
+        &self.faces[self.faces_at[p] as usize..self.faces_at[p + 1] as usize]
+    }
+
+    #[inline]
+    pub fn inner_of(&self, p: usize) -> &[u32] {
+        &self.inner[self.inner_at[p] as usize..self.inner_at[p + 1] as usize]
+    }
+
+    #[inline]
+    pub fn rim_of(&self, p: usize) -> &[(u32, u32)] {
+        &self.rim[self.rim_at[p] as usize..self.rim_at[p + 1] as usize]
+    }
+
+    #[inline]
+    pub fn links_of(&self, p: usize) -> &[Link] {
+        &self.links[self.links_at[p] as usize..self.links_at[p + 1] as usize]
+    }
+
+    #[inline]
+    pub fn exits_of(&self, link: &Link) -> &[(u32, u32, u32)] {
+        &self.exits[link.exits.0 as usize..link.exits.1 as usize]
+    }
+
+    /// How patch `p` faces along unit `d`.
+    #[inline]
+    pub fn facing(&self, p: usize, d: DVec3) -> Facing {
+        let c = self.axis[p].dot(d);
+        let s = self.sin_half[p] + 1e-12;
+        if c > s {
+            Facing::Along
+        } else if c < -s {
+            Facing::Away
+        } else {
+            Facing::Mixed
+        }
+    }
+}
+
+/// Groups `(key, value)` pairs by key into offsets (`n + 1`) and values, keeping the
+/// values' order within a key.
+fn csr<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
+    items.sort_by_key(|x| x.0);
+    let mut at = vec![0u32; n + 1];
+    for (k, _) in &items {
+        at[*k as usize + 1] += 1;
+    }
+    for i in 0..n {
+        at[i + 1] += at[i];
+    }
+    (at, items.into_iter().map(|x| x.1).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::fixtures;
+    use super::*;
+    use crate::geometry::builtin::geodesic_sphere;
+
+    #[test]
+    fn every_face_is_in_one_patch_and_its_cone_holds_its_faces_normals() {
+        let mesh = geodesic_sphere(12, 2.0);
+        let b = fixtures::build(&mesh);
+        let p = &b.patches;
+        let nf = b.polys.faces();
+        // each face once, in the patch of_face names
+        let mut seen = vec![0u32; nf];
+        for k in 0..p.len() {
+            assert!(!p.faces_of(k).is_empty() && p.faces_of(k).len() <= MAX_FACES);
+            for &f in p.faces_of(k) {
+                seen[f as usize] += 1;
+                assert_eq!(p.of_face[f as usize] as usize, k);
+            }
+        }
+        assert!(seen.iter().all(|&s| s == 1));
+        // fewer patches than faces: the sphere is smooth enough to group
+        assert!(p.len() * 4 < nf, "{} patches for {nf} faces", p.len());
+        // a cone of half-angle asin(sin_half) about the axis holds every normal (to
+        // rounding), and the box holds every corner
+        for k in 0..p.len() {
+            let cos_half = (1.0 - p.sin_half[k].min(1.0).powi(2)).sqrt();
+            for &f in p.faces_of(k) {
+                let n = b.polys.normal[f as usize];
+                assert!(n.dot(p.axis[k]) >= cos_half - 1e-12, "patch {k} face {f}");
+                for q in b.polys.of(f as usize).flat_map(|i| b.polys.corners3(i)) {
+                    let off = (*q - p.centre[k]).abs() - p.half[k];
+                    assert!(off.max_element() <= 1e-12, "{off}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_patch_facing_one_way_has_every_face_facing_that_way() {
+        let mesh = geodesic_sphere(12, 2.0);
+        let b = fixtures::build(&mesh);
+        let p = &b.patches;
+        let (mut along, mut away, mut mixed) = (0, 0, 0);
+        for d in fixtures::directions() {
+            for k in 0..p.len() {
+                let dots = p
+                    .faces_of(k)
+                    .iter()
+                    .map(|&f| b.polys.normal[f as usize].dot(d));
+                match p.facing(k, d) {
+                    Facing::Along => {
+                        along += 1;
+                        assert!(dots.clone().all(|x| x > 0.0));
+                    }
+                    Facing::Away => {
+                        away += 1;
+                        assert!(dots.clone().all(|x| x < 0.0));
+                    }
+                    Facing::Mixed => mixed += 1,
+                }
+            }
+        }
+        // the mixed ones are the few along the terminator
+        assert!(mixed * 5 < along + away, "{along} {away} {mixed}");
+    }
+
+    #[test]
+    fn links_lead_across_shared_edges_to_the_neighbouring_patch() {
+        let mesh = geodesic_sphere(8, 1.0);
+        let b = fixtures::build(&mesh);
+        let p = &b.patches;
+        for k in 0..p.len() {
+            for link in p.links_of(k) {
+                assert_ne!(link.patch as usize, k);
+                let exits = p.exits_of(link);
+                assert!(!exits.is_empty());
+                for &(e, inside, outside) in exits {
+                    let edge = &b.topo.edges[e as usize];
+                    assert!([edge.f0, edge.f1].contains(&inside));
+                    assert!([edge.f0, edge.f1].contains(&outside));
+                    assert_eq!(p.of_face[inside as usize] as usize, k);
+                    assert_eq!(p.of_face[outside as usize], link.patch);
+                }
+            }
+        }
+    }
+}

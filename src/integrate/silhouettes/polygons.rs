@@ -1,0 +1,264 @@
+//! The faces as convex polygons, each in its own plane: built once per request.
+//!
+//! A face is one polygon (its outline) when it is convex, however finely it is meshed,
+//! else its triangles. The corners are kept both in the body frame (m) and in the face's
+//! own plane coordinates (its basis (u, w) from a point of it), where a face is cut
+//! along the lines of the shadows that cross it and a ray's hit is tested.
+
+use crate::geometry::{Faces, Mesh};
+use glam::{DVec2, DVec3};
+
+/// The faces' planes and their polygons.
+pub struct Polygons {
+    /// Per face: unit normal, a point of its plane, an orthonormal basis (u, w) of the
+    /// plane with u × w = n, two-sidedness, convexity (one polygon), and a point inside
+    /// it (its first triangle's centroid, m).
+    pub normal: Vec<DVec3>,
+    pub point: Vec<DVec3>,
+    pub basis: Vec<(DVec3, DVec3)>,
+    pub two_sided: Vec<bool>,
+    pub convex: Vec<bool>,
+    pub inside: Vec<DVec3>,
+    /// Per face: the centre and radius (m) of a sphere holding it.
+    pub centre: Vec<DVec3>,
+    pub radius: Vec<f64>,
+    /// Per face: its range of polygons.
+    pub of_face: Vec<(u32, u32)>,
+    /// Per polygon: its face and its range of corners.
+    pub face: Vec<u32>,
+    pub spans: Vec<(u32, u32)>,
+    /// The corners, in the body frame (m) and in their face's plane coordinates (m).
+    pub corners: Vec<DVec3>,
+    pub corners2: Vec<DVec2>,
+}
+
+impl Polygons {
+    pub fn build(mesh: &Mesh, faces: &Faces, two_sided: Vec<bool>) -> Polygons {
+        let nf = faces.len();
+        let mut p = Polygons {
+            normal: Vec::with_capacity(nf),
+            point: Vec::with_capacity(nf),
+            basis: Vec::with_capacity(nf),
+            two_sided,
+            convex: Vec::with_capacity(nf),
+            inside: Vec::with_capacity(nf),
+            centre: Vec::with_capacity(nf),
+            radius: Vec::with_capacity(nf),
+            of_face: Vec::with_capacity(nf),
+            face: Vec::new(),
+            spans: Vec::new(),
+            corners: Vec::new(),
+            corners2: Vec::new(),
+        };
+        let (mut pts, mut ids, mut order, mut hull) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (i, f) in faces.faces.iter().enumerate() {
+            let n = f.normal;
+            let (u, w) = basis(n);
+            let o = mesh.vertices[mesh.triangles[f.triangles[0] as usize][0] as usize];
+            let to2 = |q: DVec3| DVec2::new((q - o).dot(u), (q - o).dot(w));
+            let [a, b, c] = mesh.corners(f.triangles[0] as usize);
+            p.normal.push(n);
+            p.point.push(o);
+            p.basis.push((u, w));
+            p.inside.push((a + b + c) / 3.0);
+            p.centre.push(f.centroid);
+            p.radius.push(f.radius);
+            pts.clear();
+            ids.clear();
+            for &t in &f.triangles {
+                for v in mesh.triangles[t as usize] {
+                    pts.push(to2(mesh.vertices[v as usize]));
+                    ids.push(mesh.vertices[v as usize]);
+                }
+            }
+            let first = p.spans.len() as u32;
+            let mut convex = f.triangles.len() == 1;
+            if f.triangles.len() > 1 {
+                crate::geometry::polygon::convex_hull(&pts, &mut order, &mut hull);
+                let (area, _) = super::cells::area_centroid(&hull);
+                convex = hull.len() >= 3 && (area - f.area).abs() <= 1e-9 * f.area;
+            }
+            if convex && f.triangles.len() > 1 {
+                let s = p.corners.len() as u32;
+                for h in &hull {
+                    let k = pts
+                        .iter()
+                        .position(|q| q == h)
+                        .expect("a hull point is a corner");
+                    p.corners.push(ids[k]);
+                    p.corners2.push(*h);
+                }
+                p.spans.push((s, p.corners.len() as u32));
+                p.face.push(i as u32);
+            } else {
+                for (tri3, tri2) in ids.chunks(3).zip(pts.chunks(3)) {
+                    let s = p.corners.len() as u32;
+                    // counter-clockwise about the face's normal, whatever the
+                    // triangle's own winding (a face welded from a mesh whose
+                    // triangles disagree)
+                    let order = if orient(tri2[0], tri2[1], tri2[2]) < 0.0 {
+                        [0, 2, 1]
+                    } else {
+                        [0, 1, 2]
+                    };
+                    p.corners.extend(order.map(|k| tri3[k]));
+                    p.corners2.extend(order.map(|k| tri2[k]));
+                    p.spans.push((s, p.corners.len() as u32));
+                    p.face.push(i as u32);
+                }
+            }
+            p.convex.push(convex);
+            p.of_face.push((first, p.spans.len() as u32));
+        }
+        p
+    }
+
+    pub fn faces(&self) -> usize {
+        self.normal.len()
+    }
+
+    pub fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    /// Polygon `i`'s corners in its face's plane coordinates.
+    #[inline]
+    pub fn corners2(&self, i: usize) -> &[DVec2] {
+        let (a, b) = self.spans[i];
+        &self.corners2[a as usize..b as usize]
+    }
+
+    /// Polygon `i`'s corners in the body frame.
+    #[inline]
+    pub fn corners3(&self, i: usize) -> &[DVec3] {
+        let (a, b) = self.spans[i];
+        &self.corners[a as usize..b as usize]
+    }
+
+    /// A body-frame point in face `f`'s plane coordinates.
+    #[inline]
+    pub fn to2(&self, f: usize, q: DVec3) -> DVec2 {
+        let (u, w) = self.basis[f];
+        let r = q - self.point[f];
+        DVec2::new(r.dot(u), r.dot(w))
+    }
+
+    /// Face `f`'s plane coordinates back in the body frame.
+    #[inline]
+    pub fn to3(&self, f: usize, q: DVec2) -> DVec3 {
+        let (u, w) = self.basis[f];
+        self.point[f] + u * q.x + w * q.y
+    }
+
+    /// The polygons of face `f`.
+    #[inline]
+    pub fn of(&self, f: usize) -> std::ops::Range<usize> {
+        let (a, b) = self.of_face[f];
+        a as usize..b as usize
+    }
+}
+
+/// An orthonormal basis (u, w) of the plane across unit `n` with u × w = n.
+pub fn basis(n: DVec3) -> (DVec3, DVec3) {
+    let (u, w) = crate::geometry::orthonormal_basis(n);
+    if u.cross(w).dot(n) < 0.0 {
+        (w, u)
+    } else {
+        (u, w)
+    }
+}
+
+/// Twice the signed area of triangle (a, b, c): positive when c is left of a → b.
+#[inline]
+pub fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    (b - a).perp_dot(c - a)
+}
+
+/// Does segment a–b come within `tol` of convex polygon `c` (separating axes)? `ccw`:
+/// whether `c` turns counter-clockwise. Knowing the winding, an edge's axis needs only
+/// the edge's own corner: the polygon lies wholly on its inner side.
+#[inline]
+pub fn segment_meets(a: DVec2, b: DVec2, c: &[DVec2], tol: f64, ccw: bool) -> bool {
+    let tol2 = tol * tol;
+    // across the segment: the polygon wholly on one side, farther than tol
+    let e = b - a;
+    let len2 = e.length_squared();
+    if len2 > 0.0 {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &q in c {
+            let s = e.perp_dot(q - a);
+            lo = lo.min(s);
+            hi = hi.max(s);
+        }
+        let gap = lo.max(-hi);
+        if gap > 0.0 && gap * gap > tol2 * len2 {
+            return false;
+        }
+    }
+    // across each edge: both ends of the segment outside it, farther than tol
+    let sign = if ccw { 1.0 } else { -1.0 };
+    let mut prev = c[c.len() - 1];
+    for &q in c {
+        let edge = q - prev;
+        // distance inward, times |edge|
+        let (sa, sb) = (
+            sign * edge.perp_dot(a - prev),
+            sign * edge.perp_dot(b - prev),
+        );
+        let gap = -sa.max(sb);
+        if gap > 0.0 && gap * gap > tol2 * edge.length_squared() {
+            return false;
+        }
+        prev = q;
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_basis_turns_counter_clockwise_about_the_normal() {
+        for n in [
+            DVec3::X,
+            -DVec3::Y,
+            DVec3::new(0.3, -0.4, 0.866).normalize(),
+        ] {
+            let (u, w) = basis(n);
+            assert!((u.cross(w) - n).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_segment_meets_a_square_of_either_winding_within_the_tolerance() {
+        let square = [
+            DVec2::ZERO,
+            DVec2::new(2.0, 0.0),
+            DVec2::new(2.0, 2.0),
+            DVec2::new(0.0, 2.0),
+        ];
+        let mut cw = square;
+        cw.reverse();
+        let p = DVec2::new;
+        for (c, ccw) in [(&square, true), (&cw, false)] {
+            // through it, ending inside it, wholly inside it
+            assert!(segment_meets(p(-1.0, 1.0), p(3.0, 1.0), c, 0.0, ccw));
+            assert!(segment_meets(p(-1.0, 1.0), p(0.5, 1.0), c, 0.0, ccw));
+            assert!(segment_meets(p(0.5, 0.5), p(1.5, 1.5), c, 0.0, ccw));
+            // past a corner diagonally, 0.5/sqrt(2) = 0.354 m from it: apart beyond 0.3,
+            // meeting within 0.4 (only the segment's own axis separates them)
+            let (a, b) = (p(2.0, 2.5), p(2.5, 2.0));
+            assert!(!segment_meets(a, b, c, 0.3, ccw));
+            assert!(segment_meets(a, b, c, 0.4, ccw));
+            // beside an edge, 0.5 m off, along it
+            let (a, b) = (p(-0.5, -1.0), p(-0.5, 3.0));
+            assert!(!segment_meets(a, b, c, 0.4, ccw));
+            assert!(segment_meets(a, b, c, 0.6, ccw));
+            // a point
+            assert!(segment_meets(p(1.0, 1.0), p(1.0, 1.0), c, 0.0, ccw));
+            assert!(!segment_meets(p(2.5, 1.0), p(2.5, 1.0), c, 0.4, ccw));
+        }
+    }
+}

@@ -1173,3 +1173,20 @@ fn an_overlong_uri_or_request_head_is_a_json_414_or_431() {
     assert_eq!(raw_exchange(addr, request(&ok, "").as_bytes()).status, 200);
     assert_eq!(get(addr, "/healthz").status, 200);
 }
+
+#[test]
+fn a_body_declared_over_the_limit_is_refused_before_it_is_sent() {
+    let server = Server::start("declared-too-large", |c| c.limits.max_body_bytes = 1000);
+    for path in ["/v1/lightcurves", "/v1/jobs"] {
+        // the head alone: the body it announces never comes
+        let head = format!(
+            "POST {path} HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\n\
+             Content-Length: 1000000000000\r\n\r\n",
+            server.addr
+        );
+        let t = std::time::Instant::now();
+        let r = raw_exchange(server.addr, head.as_bytes());
+        assert_error(&r, 413, Some("body"));
+        assert!(t.elapsed() < Duration::from_secs(3), "{:?}", t.elapsed());
+    }
+}

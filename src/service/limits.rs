@@ -206,9 +206,26 @@ pub async fn admit(
         .get(axum::http::header::CONTENT_LENGTH)
         .and_then(|v| v.to_str().ok())
         .and_then(|v| v.trim().parse::<usize>().ok());
-    // Over the body limit: the body-limit layer answers 413 without reading it
+    // Declared over the body limit: 413 at once. (The body-limit layer would answer only
+    // after reading up to the limit, and wait as long for a body that is never sent.)
     let bytes = match declared {
-        Some(n) if n > budget.max_body => return next.run(req).await,
+        Some(n) if n > budget.max_body => {
+            let mut r = super::errors::ApiError::new(
+                axum::http::StatusCode::PAYLOAD_TOO_LARGE,
+                format!(
+                    "request body too large: {n} bytes declared, at most {}",
+                    budget.max_body
+                ),
+            )
+            .with_field("body")
+            .into_response();
+            // the body is left unread: the connection cannot carry another request
+            r.headers_mut().insert(
+                axum::http::header::CONNECTION,
+                axum::http::HeaderValue::from_static("close"),
+            );
+            return r;
+        }
         Some(n) => n,
         None => budget.max_body,
     };

@@ -1175,6 +1175,61 @@ fn an_overlong_uri_or_request_head_is_a_json_414_or_431() {
 }
 
 #[test]
+fn a_light_curve_turned_away_is_answered_before_its_body_is_read() {
+    // One slot and no waiting room: while one light curve computes, the next is turned
+    // away at once, without the service waiting for (or parsing) its body.
+    let server = Server::start("admit-before-body", |c| {
+        c.engine = slow_engine;
+        c.limits.max_concurrent = 1;
+        c.limits.max_queued = 0;
+    });
+    let addr = server.addr;
+    let body = scene_request("plate", 2);
+    std::thread::scope(|s| {
+        let first = s.spawn(|| post_json(addr, "/v1/lightcurves", &body));
+        let start = std::time::Instant::now();
+        while !get(addr, "/metrics")
+            .text()
+            .contains("glint_computations_running 1")
+        {
+            assert!(start.elapsed() < Duration::from_secs(30));
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        // the head announces a body that never comes
+        use std::io::{Read, Write};
+        let mut c = std::net::TcpStream::connect(addr).unwrap();
+        c.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+        let t = std::time::Instant::now();
+        c.write_all(
+            format!(
+                "POST /v1/lightcurves HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\n\
+                 Content-Length: {}\r\n\r\n",
+                body.len()
+            )
+            .as_bytes(),
+        )
+        .unwrap();
+        let mut buf = vec![0; 4096];
+        let n = c.read(&mut buf).unwrap_or(0);
+        let answer = String::from_utf8_lossy(&buf[..n]).into_owned();
+        assert!(answer.starts_with("HTTP/1.1 503"), "{answer:?}");
+        assert!(
+            answer.to_ascii_lowercase().contains("retry-after: 1"),
+            "{answer}"
+        );
+        // at once, not after the first's two seconds
+        assert!(
+            t.elapsed() < Duration::from_millis(1500),
+            "{:?}",
+            t.elapsed()
+        );
+        assert_eq!(first.join().unwrap().status, 200);
+    });
+    // the place comes back with the answer
+    assert_eq!(post_json(addr, "/v1/lightcurves", &body).status, 200);
+}
+
+#[test]
 fn a_body_declared_over_the_limit_is_refused_before_it_is_sent() {
     let server = Server::start("declared-too-large", |c| c.limits.max_body_bytes = 1000);
     for path in ["/v1/lightcurves", "/v1/jobs"] {

@@ -1125,3 +1125,123 @@ fn request_bytes_in_flight_are_bounded_before_the_body_is_read() {
     // the first's bytes are released with its answer
     assert_eq!(post_json(addr, "/v1/lightcurves", &body).status, 200);
 }
+
+/// The answer to `raw` sent whole on a fresh connection, read until the server closes.
+fn raw_exchange(addr: std::net::SocketAddr, raw: &[u8]) -> Reply {
+    use std::io::{Read, Write};
+    let mut s = std::net::TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    // the server may answer and close before it has read everything
+    let _ = s.write_all(raw);
+    let mut buf = Vec::new();
+    let _ = s.read_to_end(&mut buf);
+    reply_of(&buf)
+}
+
+#[test]
+fn an_overlong_uri_or_request_head_is_a_json_414_or_431() {
+    let server = Server::start("head-limits", |_| {});
+    let addr = server.addr;
+    let request = |target: &str, fields: &str| {
+        format!("GET {target} HTTP/1.1\r\nHost: {addr}\r\n{fields}Connection: close\r\n\r\n")
+    };
+    // over the service's URI limit (hyper would take it): ours, naming `uri`
+    let long = format!("/v1/jobs/{}", "a".repeat(10 << 10));
+    let r = raw_exchange(addr, request(&long, "").as_bytes());
+    assert_error(&r, 414, Some("uri"));
+    assert!(r.header("x-request-id").is_some());
+    // over hyper's own bounds, answered before any of the service's code runs: a 100 KiB
+    // target, one 200 KiB header field, 150 header fields
+    let huge = format!("/v1/jobs/{}", "a".repeat(100 << 10));
+    let big_field = format!("X-Big: {}\r\n", "b".repeat(200 << 10));
+    let many: String = (0..150).map(|i| format!("X-F{i}: {i}\r\n")).collect();
+    for raw in [
+        request(&huge, ""),
+        request("/healthz", &big_field),
+        request("/healthz", &many),
+    ] {
+        let r = raw_exchange(addr, raw.as_bytes());
+        assert_error(&r, 431, Some("headers"));
+        assert!(r.header("x-request-id").is_some(), "{:?}", r.headers);
+        assert_eq!(r.header("connection"), Some("close"));
+    }
+    // a head hyper cannot read (a control character in a field): a JSON 400
+    let r = raw_exchange(addr, request("/healthz", "X-Bad: a\x01b\r\n").as_bytes());
+    assert_error(&r, 400, None);
+    // a target of 8 KiB is still taken, and the service goes on answering
+    let ok = format!("/healthz?{}", "q".repeat(8000));
+    assert_eq!(raw_exchange(addr, request(&ok, "").as_bytes()).status, 200);
+    assert_eq!(get(addr, "/healthz").status, 200);
+}
+
+#[test]
+fn a_light_curve_turned_away_is_answered_before_its_body_is_read() {
+    // One slot and no waiting room: while one light curve computes, the next is turned
+    // away at once, without the service waiting for (or parsing) its body.
+    let server = Server::start("admit-before-body", |c| {
+        c.engine = slow_engine;
+        c.limits.max_concurrent = 1;
+        c.limits.max_queued = 0;
+    });
+    let addr = server.addr;
+    let body = scene_request("plate", 2);
+    std::thread::scope(|s| {
+        let first = s.spawn(|| post_json(addr, "/v1/lightcurves", &body));
+        let start = std::time::Instant::now();
+        while !get(addr, "/metrics")
+            .text()
+            .contains("glint_computations_running 1")
+        {
+            assert!(start.elapsed() < Duration::from_secs(30));
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        // the head announces a body that never comes
+        use std::io::{Read, Write};
+        let mut c = std::net::TcpStream::connect(addr).unwrap();
+        c.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+        let t = std::time::Instant::now();
+        c.write_all(
+            format!(
+                "POST /v1/lightcurves HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\n\
+                 Content-Length: {}\r\n\r\n",
+                body.len()
+            )
+            .as_bytes(),
+        )
+        .unwrap();
+        let mut buf = vec![0; 4096];
+        let n = c.read(&mut buf).unwrap_or(0);
+        let answer = String::from_utf8_lossy(&buf[..n]).into_owned();
+        assert!(answer.starts_with("HTTP/1.1 503"), "{answer:?}");
+        assert!(
+            answer.to_ascii_lowercase().contains("retry-after: 1"),
+            "{answer}"
+        );
+        // at once, not after the first's two seconds
+        assert!(
+            t.elapsed() < Duration::from_millis(1500),
+            "{:?}",
+            t.elapsed()
+        );
+        assert_eq!(first.join().unwrap().status, 200);
+    });
+    // the place comes back with the answer
+    assert_eq!(post_json(addr, "/v1/lightcurves", &body).status, 200);
+}
+
+#[test]
+fn a_body_declared_over_the_limit_is_refused_before_it_is_sent() {
+    let server = Server::start("declared-too-large", |c| c.limits.max_body_bytes = 1000);
+    for path in ["/v1/lightcurves", "/v1/jobs"] {
+        // the head alone: the body it announces never comes
+        let head = format!(
+            "POST {path} HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\n\
+             Content-Length: 1000000000000\r\n\r\n",
+            server.addr
+        );
+        let t = std::time::Instant::now();
+        let r = raw_exchange(server.addr, head.as_bytes());
+        assert_error(&r, 413, Some("body"));
+        assert!(t.elapsed() < Duration::from_secs(3), "{:?}", t.elapsed());
+    }
+}

@@ -55,10 +55,11 @@ pub fn http(
     let _ = s.write_all(body);
     let mut raw = Vec::new();
     let _ = s.read_to_end(&mut raw);
-    parse(&raw)
+    reply_of(&raw)
 }
 
-fn parse(raw: &[u8]) -> Reply {
+/// The answer in `raw`, the bytes a server sent (a chunked body is joined).
+pub fn reply_of(raw: &[u8]) -> Reply {
     let end = raw
         .windows(4)
         .position(|w| w == b"\r\n\r\n")

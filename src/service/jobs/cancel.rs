@@ -32,7 +32,7 @@ impl Jobs {
         let was_cancelled = cancelled.is_some();
         run_blocking("removing the job", move || {
             if was_cancelled {
-                me.persist(&key, None)
+                me.persist(&key)
             } else {
                 me.remove(&key)
             }

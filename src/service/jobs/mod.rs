@@ -134,15 +134,13 @@ impl Jobs {
         self.table.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Writes the job's current in-memory record (and `result`, if any) to the store.
-    fn persist(&self, id: &str, result: Option<&[u8]>) -> Result<(), StoreError> {
+    /// Writes the job's current in-memory record to the store (a result is written with
+    /// its record, by the worker's `finish`).
+    fn persist(&self, id: &str) -> Result<(), StoreError> {
         let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
         let rec = self.table().get(id).map(|e| e.rec.clone());
         match rec {
-            Some(rec) => {
-                let result = result.filter(|_| rec.state == JobState::Done);
-                self.store.update(&rec, result)
-            }
+            Some(rec) => self.store.update(&rec, None),
             None => Ok(()),
         }
     }

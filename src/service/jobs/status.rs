@@ -3,9 +3,12 @@
 
 use super::{Entry, JobState, Jobs};
 use crate::service::errors::ApiError;
+use crate::service::store::{Form, Store};
 use crate::service::threads::run_blocking;
+use axum::body::Bytes;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
+use std::sync::Arc;
 use std::time::Duration;
 use utoipa::ToSchema;
 
@@ -114,8 +117,8 @@ impl Jobs {
         m
     }
 
-    /// The stored response JSON of a finished job; `Err` says why there is none.
-    pub async fn result(&self, id: &str) -> Result<Vec<u8>, ApiError> {
+    /// Why job `id` has no result to serve, if it has none: unknown (404) or not done (409).
+    fn check_done(&self, id: &str) -> Result<(), ApiError> {
         let state = self
             .table()
             .get(id)
@@ -128,14 +131,75 @@ impl Jobs {
                 if state.is_final() { "" } else { " yet" }
             )));
         }
+        Ok(())
+    }
+
+    /// The size of a finished job's stored result in `form`; `Err` says why there is none.
+    pub async fn result_len(&self, id: &str, form: Form) -> Result<u64, ApiError> {
+        self.check_done(id)?;
         let store = self.store.clone();
         let key = id.to_string();
-        run_blocking("reading the result", move || store.result(&key))
+        run_blocking("reading the result", move || store.result_len(&key, form))
             .await?
             .map_err(ApiError::from)?
-            // Removed by expiry between the two looks.
+            // Removed by expiry or a DELETE between the two looks.
             .ok_or_else(|| no_such_job(id))
     }
+
+    /// A finished job's result in `form`, `len` bytes ([`Self::result_len`]), read from the
+    /// store one chunk at a time as the client takes it: a download holds about a chunk in
+    /// memory, whatever the result's size. A result removed mid-way ends the stream with an
+    /// error (the connection is cut short of its `Content-Length`).
+    pub fn result_stream(
+        &self,
+        id: &str,
+        form: Form,
+        len: u64,
+    ) -> impl futures_util::stream::Stream<Item = std::io::Result<Bytes>> + Send + 'static {
+        let store = self.store.clone();
+        let id: Arc<str> = Arc::from(id);
+        futures_util::stream::try_unfold((0u32, 0u64), move |(index, sent)| {
+            next_chunk(store.clone(), id.clone(), form, len, index, sent)
+        })
+    }
+
+    /// The PNG of epoch `epoch`'s thumbnail of a finished job; `Err` says why there is none.
+    pub async fn thumbnail(&self, id: &str, epoch: usize) -> Result<Vec<u8>, ApiError> {
+        self.check_done(id)?;
+        let store = self.store.clone();
+        let key = id.to_string();
+        run_blocking("reading the image", move || {
+            store.thumbnail(&key, epoch as u64)
+        })
+        .await?
+        .map_err(ApiError::from)?
+        .ok_or_else(|| {
+            ApiError::not_found(format!("the job has no image for epoch {epoch}"))
+                .with_field("epoch")
+        })
+    }
+}
+
+/// Chunk `index` of a result being sent, `sent` of its `len` bytes gone already; with the
+/// state after it, or `None` at its end.
+async fn next_chunk(
+    store: Arc<Store>,
+    id: Arc<str>,
+    form: Form,
+    len: u64,
+    index: u32,
+    sent: u64,
+) -> std::io::Result<Option<(Bytes, (u32, u64))>> {
+    if sent >= len {
+        return Ok(None);
+    }
+    let chunk = tokio::task::spawn_blocking(move || store.result_chunk(&id, form, index))
+        .await
+        .map_err(std::io::Error::other)?
+        .map_err(std::io::Error::other)?
+        .ok_or_else(|| std::io::Error::other("the result was removed while it was being sent"))?;
+    let next = (index + 1, sent + chunk.len() as u64);
+    Ok(Some((Bytes::from(chunk), next)))
 }
 
 /// The 404 of a job id that is not (or no longer) known.

@@ -4,7 +4,7 @@
 
 use super::{now_ms, JobRecord, JobState, Jobs};
 use crate::integrate::{Cancelled, Progress};
-use crate::scene::{validate, Scene};
+use crate::scene::{validate, Response, Scene};
 use crate::service::store::StoreError;
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
@@ -60,7 +60,7 @@ impl Jobs {
         let key = id.to_string();
         let outcome = tokio::task::spawn_blocking(move || {
             let _slot = slot; // held until the computation has really stopped
-            me.persist(&key, None).map_err(|e| e.to_string())?;
+            me.persist(&key).map_err(|e| e.to_string())?;
             let body = me
                 .store
                 .request(&key)
@@ -72,8 +72,8 @@ impl Jobs {
                 .map_err(|e| e.to_string())?;
             match me.pool.install(|| (me.engine)(&scene, &progress)) {
                 Ok(resp) => {
-                    let json = serde_json::to_vec(&resp).map_err(|e| e.to_string())?;
-                    Ok(Some((json, resp.epochs.len())))
+                    let n = resp.epochs.len();
+                    Ok(Some((resp, n)))
                 }
                 Err(Cancelled) => Ok(None),
             }
@@ -124,7 +124,7 @@ impl Jobs {
     fn finish(
         &self,
         id: &str,
-        outcome: Result<(Vec<u8>, usize), String>,
+        outcome: Result<(Response, usize), String>,
     ) -> Result<(), StoreError> {
         let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
         let mut rec = match self.table().get(id) {
@@ -135,7 +135,7 @@ impl Jobs {
         let result = settle(&mut rec, outcome, now_ms(), || {
             self.table().get(id).map_or(0, |e| e.progress.done())
         });
-        self.store.update(&rec, result.as_deref())?;
+        self.store.update(&rec, result.as_ref())?;
         if rec.state == JobState::Done {
             self.metrics.add_epochs("job", rec.epochs_done as u64);
         }
@@ -150,19 +150,19 @@ impl Jobs {
 
 /// A run's outcome written into its record at `now` (Unix ms): `done` with its epoch count
 /// and the result to store, or `failed` with the message and the epochs computed so far
-/// (`done_so_far`, asked only then). Returns the result JSON, if any.
-fn settle(
+/// (`done_so_far`, asked only then). Returns the result, if any.
+fn settle<T>(
     rec: &mut JobRecord,
-    outcome: Result<(Vec<u8>, usize), String>,
+    outcome: Result<(T, usize), String>,
     now: i64,
     done_so_far: impl FnOnce() -> usize,
-) -> Option<Vec<u8>> {
+) -> Option<T> {
     rec.finished_ms = Some(now);
     match outcome {
-        Ok((json, n)) => {
+        Ok((result, n)) => {
             rec.state = JobState::Done;
             rec.epochs_done = n;
-            Some(json)
+            Some(result)
         }
         Err(msg) => {
             rec.state = JobState::Failed;
@@ -192,7 +192,7 @@ mod tests {
     #[test]
     fn a_failed_run_keeps_its_message_and_the_epochs_computed() {
         let mut rec = record(JobState::Running);
-        let result = settle(&mut rec, Err("no disk".into()), 9_000, || 6);
+        let result = settle::<Vec<u8>>(&mut rec, Err("no disk".into()), 9_000, || 6);
         assert_eq!(result, None);
         assert_eq!((rec.state, rec.epochs_done), (JobState::Failed, 6));
         assert_eq!(rec.error.as_deref(), Some("no disk"));

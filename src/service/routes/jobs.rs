@@ -3,18 +3,16 @@
 //! ([`crate::service::jobs`]) does the work.
 
 use super::{body_response, example_request, wants_csv, JsonBody};
-use crate::report::csv::to_csv;
 use crate::scene::{Request, Response};
 use crate::service::errors::{ApiError, ErrorBody};
 use crate::service::jobs::{no_such_job, Deleted, JobState, JobStatus};
-use crate::service::threads::run_blocking;
+use crate::service::store::Form;
 use crate::service::AppState;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{Path, Query, State};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response as HttpResponse};
 use axum::Json;
-use base64::Engine as _;
 use serde::Deserialize;
 use utoipa::IntoParams;
 
@@ -172,16 +170,14 @@ pub async fn get_job_result(
     Path(id): Path<String>,
     headers: HeaderMap,
 ) -> Result<HttpResponse, ApiError> {
-    let json = st.jobs.result(&id).await?;
-    if !wants_csv(&headers) {
-        return Ok(body_response(json, false));
-    }
-    let csv = run_blocking("converting the result", move || {
-        serde_json::from_slice::<Response>(&json).map(|r| to_csv(&r).into_bytes())
-    })
-    .await?
-    .map_err(ApiError::internal)?;
-    Ok(body_response(csv, true))
+    let csv = wants_csv(&headers);
+    let form = if csv { Form::Csv } else { Form::Json };
+    let len = st.jobs.result_len(&id, form).await?;
+    let body = axum::body::Body::from_stream(st.jobs.result_stream(&id, form, len));
+    let mut resp = body_response(body, csv);
+    resp.headers_mut()
+        .insert(header::CONTENT_LENGTH, HeaderValue::from(len));
+    Ok(resp)
 }
 
 /// The rendered image of one epoch of a finished job (`{epoch}.png`, epoch index from 0).
@@ -205,23 +201,7 @@ pub async fn get_thumbnail(
         .strip_suffix(".png")
         .and_then(|s| s.parse().ok())
         .ok_or_else(|| ApiError::not_found("expected `{epoch}.png`").with_field("epoch"))?;
-    let json = st.jobs.result(&id).await?;
-    let png = run_blocking("reading the image", move || -> Result<Vec<u8>, ApiError> {
-        let resp: Response = serde_json::from_slice(&json).map_err(ApiError::internal)?;
-        let thumb = resp
-            .thumbnails
-            .unwrap_or_default()
-            .into_iter()
-            .find(|t| t.epoch == epoch)
-            .ok_or_else(|| {
-                ApiError::not_found(format!("the job has no image for epoch {epoch}"))
-                    .with_field("epoch")
-            })?;
-        base64::engine::general_purpose::STANDARD
-            .decode(thumb.png_base64.as_bytes())
-            .map_err(ApiError::internal)
-    })
-    .await??;
+    let png = st.jobs.thumbnail(&id, epoch).await?;
     Ok((
         [(header::CONTENT_TYPE, HeaderValue::from_static("image/png"))],
         png,

@@ -114,7 +114,7 @@ fn wants_csv(headers: &HeaderMap) -> bool {
 }
 
 /// A body of JSON (`application/json`) or CSV (`text/csv; charset=utf-8`).
-fn body_response(bytes: Vec<u8>, csv: bool) -> HttpResponse {
+fn body_response(body: impl Into<axum::body::Body>, csv: bool) -> HttpResponse {
     let ct = if csv {
         "text/csv; charset=utf-8"
     } else {
@@ -122,7 +122,7 @@ fn body_response(bytes: Vec<u8>, csv: bool) -> HttpResponse {
     };
     (
         [(header::CONTENT_TYPE, HeaderValue::from_static(ct))],
-        bytes,
+        body.into(),
     )
         .into_response()
 }

@@ -1,11 +1,10 @@
 //! The fit itself: which parameters are free, the residuals of the samples, every start
 //! solved and the best polished.
 
-use super::geometry::evaluate;
 use super::model::{Model, ParamSpec};
 use super::report::{BrdfFit, Fitted};
 use super::request::{Options, Space};
-use super::samples::{validate_samples, Sample};
+use super::samples::{evaluate, validate_samples, Sample};
 use crate::fit::params::{check_in_bound, Bound};
 use crate::fit::solve::{self, Loss, Residuals, Scale, Settings, Solution};
 use crate::scene::ValidationError;

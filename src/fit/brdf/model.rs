@@ -1,8 +1,7 @@
 //! The models that can be fitted: their parameters with the bounds a request's validation
 //! takes, the BRDF each set of values builds, and the starting points of a fit.
 
-use super::geometry::evaluate;
-use super::samples::Sample;
+use super::samples::{evaluate, Sample};
 use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet};
 use crate::fit::params::{Bound, Named};
 

@@ -1,10 +1,10 @@
 //! The result of a BRDF fit: the report assembled from the solver's best start, its
 //! warnings, and the data of the Fig. 2-style plot.
 
-use super::geometry::{evaluate, evaluate_at};
+use super::geometry::evaluate_at;
 use super::model::{Model, ParamSpec};
 use super::request::{Options, Space};
-use super::samples::Sample;
+use super::samples::{evaluate, Sample};
 use crate::brdf::Brdf;
 use crate::fit::params::{Named, SolverReport};
 use crate::fit::solve::{Covariance, Solution};

@@ -120,7 +120,7 @@ impl LightcurveFit {
             .map(|((n, _), _)| n.clone())
             .collect();
         let warnings = warnings(&sol, &at_bound, &fitted, dark);
-        let request_out = fitted_request(request, problem, &sol.p);
+        let request_out = fitted_request(request, &problem.materials, &problem.targets, &sol.p);
         LightcurveFit {
             parameters,
             uncertainty,

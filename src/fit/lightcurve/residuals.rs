@@ -1,7 +1,7 @@
 //! The residuals: the request validated once, each evaluation's parameters put into its
 //! scene, a light curve of the observed epochs simulated and compared with the magnitudes.
 
-use super::free::{set_field, Target};
+use super::free::{assign, Target};
 use super::observed::Observation;
 use crate::fit::solve::Residuals;
 use crate::integrate::simulate;
@@ -33,16 +33,8 @@ impl Problem {
     /// Puts parameters `p` into the scene.
     fn apply(&self, p: &[f64]) -> Result<(), ValidationError> {
         let mut scene = self.scene.borrow_mut();
-        let mut materials = self.materials.clone();
-        let mut yaw = 0.0;
-        for (t, &v) in self.targets.iter().zip(p) {
-            match t {
-                Target::Material { index, field } => {
-                    set_field(materials.get_mut(index).expect("resolved"), field, v)
-                }
-                Target::Yaw => yaw = v,
-            }
-        }
+        let (materials, yaw) = assign(&self.targets, &self.materials, p);
+        let yaw = yaw.unwrap_or(0.0);
         for (index, m) in materials {
             scene.materials[index] = validate::material(
                 &format!("object.materials[{index}]"),

@@ -252,10 +252,19 @@ where
 
 /// The chart as SVG text.
 pub fn svg(title: &str, lines: &[Line]) -> Result<String, String> {
+    svg_with(SIZE, |root, k| draw(root, title, lines, k))
+}
+
+/// Any chart as SVG text, `size` user units: `draw` is called with the SVG drawing area
+/// and the scale 1 (the counterpart of [`png_with`]).
+pub(crate) fn svg_with(
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<SVGBackend<'_>, Shift>, u32) -> Result<(), String>,
+) -> Result<String, String> {
     let mut out = String::new();
     {
-        let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw(&root, title, lines, 1)?;
+        let root = SVGBackend::with_string(&mut out, size).into_drawing_area();
+        draw(&root, 1)?;
     }
     Ok(out)
 }

@@ -389,6 +389,116 @@ fn bad_samples_and_options_are_named() {
     assert_eq!(e.field, "header.theta_r_deg");
 }
 
+/// The BRDF a request's material (JSON) builds, through the request's own validation: a
+/// path the fit does not take to build it.
+fn request_material(mut material: serde_json::Value) -> Brdf {
+    material["name"] = serde_json::json!("surface"); // the plate's one material
+    let request = serde_json::json!({
+        "object": { "mesh": { "builtin": "plate" }, "materials": [material] },
+        "epochs": [{ "t": 0.0, "sun": [0.0, 0.0, 1.0], "observer": [0.0, 0.0, 1.0e6] }]
+    });
+    let mut scene = glint::Scene::from_json(&request.to_string(), &glint::Limits::unlimited())
+        .expect("a valid material");
+    scene.materials.swap_remove(0).brdf
+}
+
+#[test]
+fn the_normalised_seed_form_is_fitted_within_kd_plus_km_at_most_1() {
+    // In the normalised form km is the lobe's albedo at normal incidence, so kd + km is
+    // the material's, and energy conservation bounds it by 1 (docs/physics.md §6.6). The
+    // truths are request materials with `"normalised": true`; their albedo at normal
+    // incidence is first checked to be kd + km (to the albedo rule's 1e-3), so the bound
+    // is the physical one. n and k are held (not identifiable from in-plane samples).
+    let fixed = [("n", 0.2), ("k", 2.5)];
+    let opts = |loss| options(Model::SeedNormalised, &fixed, loss);
+    for (kd, km, delta, noise, seed) in [(0.3, 0.5, 0.05, 0.03, 3u64), (0.35, 0.65, 0.02, 0.05, 4)]
+    {
+        let truth = request_material(serde_json::json!({
+            "name": "m", "model": "seed-microfacet", "normalised": true,
+            "kd": kd, "km": km, "slope_rms": delta, "n": 0.2, "k": 2.5
+        }));
+        let albedo = glint::brdf::albedo::directional(&truth, 0.0, 0.0);
+        assert!((albedo - (kd + km)).abs() < 1e-3, "albedo {albedo}");
+        let data = samples(&truth, noise, &mut Rng(seed));
+        let fit = brdf::fit(&data, &opts(Loss::Huber)).unwrap();
+        let p = &fit.parameters;
+        let s = |n: &str| fit.uncertainty[n].unwrap();
+        println!(
+            "normalised kd {kd}, km {km}: kd {:.4} ± {:.4}, km {:.4} ± {:.4}, δ {:.5} ± {:.5}, \
+             kd + km {:.6}, at_bound {:?}",
+            p["kd"],
+            s("kd"),
+            p["km"],
+            s("km"),
+            p["slope_rms"],
+            s("slope_rms"),
+            p["kd"] + p["km"],
+            fit.at_bound
+        );
+        // never above the bound (to rounding), and the truth within 3σ
+        assert!(p["kd"] + p["km"] <= 1.0 + 1e-12, "{p:?}");
+        for (name, t) in [("kd", kd), ("km", km), ("slope_rms", delta)] {
+            assert!(
+                (p[name] - t).abs() < 3.0 * s(name),
+                "{name}: {} ± {}",
+                p[name],
+                s(name)
+            );
+        }
+        assert!(fit.normalised && fit.material["normalised"] == true);
+        // the material it hands back builds, in a request, the BRDF it fitted
+        let pasted = request_material(fit.material.clone());
+        let fitted = fit.brdf().unwrap();
+        for (ti, tr, phi) in [(10.0, 10.0, 180.0), (30.0, 31.0, 180.0), (60.0, 20.0, 0.0)] {
+            let (a, b) = (
+                evaluate_at(&pasted, ti, tr, phi),
+                evaluate_at(&fitted, ti, tr, phi),
+            );
+            assert!(
+                (a - b).abs() <= 1e-12 * a.abs().max(1e-300),
+                "{a} against {b}"
+            );
+        }
+    }
+    // the bound with one of the two fixed: km ≤ 1 − kd
+    let truth = request_material(serde_json::json!({
+        "name": "m", "model": "seed-microfacet", "normalised": true,
+        "kd": 0.4, "km": 0.6, "slope_rms": 0.03, "n": 0.2, "k": 2.5
+    }));
+    let data = samples(&truth, 0.05, &mut Rng(9));
+    let one = brdf::fit(
+        &data,
+        &options(
+            Model::SeedNormalised,
+            &[("n", 0.2), ("k", 2.5), ("kd", 0.4)],
+            Loss::Huber,
+        ),
+    )
+    .unwrap();
+    assert!(one.parameters["km"] <= 0.6 + 1e-12, "{:?}", one.parameters);
+}
+
+#[test]
+fn the_normalised_form_is_named_where_it_does_not_apply() {
+    let data = samples(&Model::Lambert.build(&[0.4]), 0.03, &mut Rng(2));
+    let req = |model: &str, fixed: serde_json::Value| -> brdf::BrdfFitRequest {
+        serde_json::from_value(serde_json::json!({
+            "model": model, "samples": [], "normalised": true, "fixed": fixed
+        }))
+        .unwrap()
+    };
+    let e = brdf::Options::from_request(&req("lambert", serde_json::json!({}))).unwrap_err();
+    assert_eq!(e.field, "normalised");
+    let opts = brdf::Options::from_request(&req(
+        "seed-microfacet",
+        serde_json::json!({"kd": 0.6, "km": 0.5}),
+    ))
+    .unwrap();
+    let e = brdf::fit(&data, &opts).unwrap_err();
+    assert_eq!(e.field, "fixed", "{e}");
+    assert!(e.message.contains("kd + km"), "{e}");
+}
+
 mod lightcurve {
     use super::Rng;
     use glint::fit::lightcurve::{self, Observation, Options};

@@ -36,6 +36,10 @@ pub struct FitBrdfArgs {
     /// Residual space: log (default) or linear.
     #[arg(long, default_value = "log")]
     pub space: String,
+    /// seed-microfacet only: fit the normalised form (km the lobe's albedo at normal
+    /// incidence; kd + km ≤ 1), as a material with `"normalised": true`.
+    #[arg(long)]
+    pub normalised: bool,
 }
 
 /// `glint fit-brdf`: a material model fitted to the samples of a CSV file.
@@ -54,6 +58,7 @@ pub fn run_brdf(args: &FitBrdfArgs) -> anyhow::Result<()> {
         loss: Some(args.loss.clone()),
         space: Some(args.space.clone()),
         plot: None,
+        normalised: Some(args.normalised),
     };
     let opts = brdf::Options::from_request(&request).map_err(|e| {
         anyhow::anyhow!(
@@ -89,8 +94,13 @@ pub fn run_brdf(args: &FitBrdfArgs) -> anyhow::Result<()> {
 /// the misfit and albedo, the warnings.
 fn print_brdf_summary(result: &brdf::BrdfFit) {
     println!(
-        "{} fitted to {} samples ({} starts, {} evaluations, {:.2} s, loss {}, {} space)",
+        "{}{} fitted to {} samples ({} starts, {} evaluations, {:.2} s, loss {}, {} space)",
         result.model,
+        if result.normalised {
+            " (normalised)"
+        } else {
+            ""
+        },
         result.samples,
         result.solver.starts,
         result.solver.evaluations,
@@ -134,6 +144,10 @@ pub struct SampleBrdfArgs {
     /// The CSV to write (`fit-brdf` reads it).
     #[arg(long)]
     pub out: PathBuf,
+    /// seed-microfacet only: the normalised form (km the lobe's albedo at normal
+    /// incidence).
+    #[arg(long)]
+    pub normalised: bool,
 }
 
 /// `glint sample-brdf`: synthetic samples of a model at the paper's Fig. 2 geometry.
@@ -145,20 +159,30 @@ pub fn run_sample(args: &SampleBrdfArgs) -> anyhow::Result<()> {
             brdf::Model::NAMES
         )
     })?;
+    let model = model
+        .with_normalised(args.normalised)
+        .ok_or_else(|| anyhow::anyhow!("--normalised: applies only to model `seed-microfacet`"))?;
     let p = model_values(model, &args.params)?;
     if !(args.noise.is_finite() && args.noise >= 0.0) {
         anyhow::bail!("--noise: must be a finite number >= 0");
     }
-    let samples = brdf::synthetic(
-        &model.build(&p),
-        &brdf::paper_geometry(),
-        args.noise,
-        args.seed,
-    );
+    if model.is_normalised() && p[0] + p[1] > 1.0 {
+        anyhow::bail!(
+            "--params: kd + km = {} is above 1 (the normalised form's albedo at normal incidence)",
+            p[0] + p[1]
+        );
+    }
+    let brdf = model.try_build(&p).ok_or_else(|| {
+        anyhow::anyhow!(
+            "--params: with this n and k the lobe reflects nothing; km cannot be an albedo"
+        )
+    })?;
+    let samples = brdf::synthetic(&brdf, &brdf::paper_geometry(), args.noise, args.seed);
     let comment = format!(
-        "SYNTHETIC samples, not a measurement: `glint sample-brdf --model {} --params {} --noise {} --seed {}`\n\
+        "SYNTHETIC samples, not a measurement: `glint sample-brdf --model {}{} --params {} --noise {} --seed {}`\n\
          (the paper's Fig. 2 geometry: incidence 10, 30, 45, 60 degrees; phi = 180 is the forward side)",
         model.name(),
+        if model.is_normalised() { " --normalised" } else { "" },
         args.params,
         args.noise,
         args.seed

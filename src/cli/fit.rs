@@ -4,7 +4,7 @@
 //! Each command is its arguments and a `run_*` function; what they share (reading a file,
 //! `NAME=VALUE` lists, writing the result and the plot, printing warnings) is at the end.
 
-use crate::fit::{brdf, lightcurve, params, solve::Loss};
+use crate::fit::{brdf, lightcurve, params};
 use crate::report::fit_plot;
 use crate::scene::validate;
 use anyhow::Context;
@@ -241,6 +241,13 @@ pub struct FitLightcurveArgs {
     /// l2 (default: weighted least squares), huber or cauchy.
     #[arg(long, default_value = "l2")]
     pub loss: String,
+    /// With the yaw free: yaws screened, evenly round the circle from its start (the three
+    /// of lowest χ² are solved); 1 solves from the start alone.
+    #[arg(long, default_value_t = lightcurve::DEFAULT_YAW_STARTS)]
+    pub yaw_starts: usize,
+    /// Most light curves the fit may evaluate, uncertainties included.
+    #[arg(long, default_value_t = lightcurve::DEFAULT_MAX_EVALUATIONS)]
+    pub max_evaluations: usize,
     /// Write the result as JSON.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -263,19 +270,21 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
         .map(|s| s.trim().to_string())
         .filter(|s| !s.is_empty())
         .collect();
-    let loss = Loss::parse(&args.loss).ok_or_else(|| {
-        anyhow::anyhow!("--loss: expected l2, huber or cauchy, got `{}`", args.loss)
-    })?;
-    let opts = lightcurve::Options {
+    let body = lightcurve::LightcurveFitRequest {
+        request: request.clone(),
+        observed: Vec::new(),
         free: free.clone(),
         start: args
             .start
             .as_deref()
             .map(|s| assignments("--start", s))
-            .transpose()?
-            .unwrap_or_default(),
-        loss,
+            .transpose()?,
+        loss: Some(args.loss.clone()),
+        yaw_starts: Some(args.yaw_starts),
+        max_evaluations: Some(args.max_evaluations),
     };
+    let opts = lightcurve::Options::from_request(&body)
+        .map_err(|e| anyhow::anyhow!("--{}: {}", e.field.replace('_', "-"), e.message))?;
     let result = lightcurve::fit(&request, &observed, &opts).map_err(|e| {
         if let Some(i) = e
             .field
@@ -289,6 +298,8 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
             )
         } else if let Some(name) = e.field.strip_prefix("start.") {
             anyhow::anyhow!("--start {name}: {}", e.message)
+        } else if e.field == "max_evaluations" {
+            anyhow::anyhow!("--max-evaluations: {}", e.message)
         } else {
             anyhow::anyhow!("{e}")
         }
@@ -315,11 +326,13 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
 /// given) with its 1σ and start, χ² and the RMS, the warnings.
 fn print_lightcurve_summary(result: &lightcurve::LightcurveFit, free: &[String]) {
     println!(
-        "{} parameters fitted to {} observations: {} light curves in {:.2} s",
+        "{} parameters fitted to {} observations: {} light curves in {:.2} s ({} solved from \
+         the starts)",
         free.len(),
         result.observations,
         result.solver.evaluations,
-        result.solver.wall_time_s
+        result.solver.wall_time_s,
+        result.solver.starts
     );
     for name in free {
         let v = result.parameters[name];

@@ -3,10 +3,11 @@
 //! ([`crate::service::jobs`]) does the work.
 
 use super::{body_response, example_request, wants_csv, JsonBody};
+use crate::fit::lightcurve::LightcurveFit;
 use crate::report::csv::to_csv;
 use crate::scene::{Request, Response};
 use crate::service::errors::{ApiError, ErrorBody};
-use crate::service::jobs::{no_such_job, Deleted, JobState, JobStatus};
+use crate::service::jobs::{no_such_job, Deleted, JobKind, JobState, JobStatus};
 use crate::service::threads::run_blocking;
 use crate::service::AppState;
 use axum::extract::rejection::QueryRejection;
@@ -52,6 +53,12 @@ pub async fn post_job(
 ) -> Result<HttpResponse, ApiError> {
     let key = idempotency_key(&headers)?;
     let (status, replayed) = st.jobs.submit(body, key).await?;
+    Ok(accepted(status, replayed))
+}
+
+/// The `202` of a stored job: its status, `Location` its URL, and
+/// `Idempotent-Replayed: true` when an earlier submission with the same key made it.
+pub(super) fn accepted(status: JobStatus, replayed: bool) -> HttpResponse {
     let location = format!("/v1/jobs/{}", status.id);
     let mut resp = (
         StatusCode::ACCEPTED,
@@ -63,11 +70,11 @@ pub async fn post_job(
         resp.headers_mut()
             .insert("idempotent-replayed", HeaderValue::from_static("true"));
     }
-    Ok(resp)
+    resp
 }
 
 /// The `Idempotency-Key` header, checked: 1–255 visible ASCII characters.
-fn idempotency_key(headers: &HeaderMap) -> Result<Option<String>, ApiError> {
+pub(super) fn idempotency_key(headers: &HeaderMap) -> Result<Option<String>, ApiError> {
     let Some(v) = headers.get("idempotency-key") else {
         return Ok(None);
     };
@@ -150,20 +157,31 @@ pub async fn delete_job(
     Path(id): Path<String>,
 ) -> Result<HttpResponse, ApiError> {
     Ok(match st.jobs.delete(&id).await? {
-        Deleted::Cancelled(s) => Json(s).into_response(),
+        Deleted::Cancelled(s) => Json(*s).into_response(),
         Deleted::Removed => StatusCode::NO_CONTENT.into_response(),
     })
 }
 
-/// A finished job's light curve (JSON, or CSV when `Accept` names `text/csv`).
+/// What a finished job gives: a light curve, or a light-curve fit's result.
+#[derive(serde::Serialize, utoipa::ToSchema)]
+#[serde(untagged)]
+#[allow(dead_code)] // a schema only: the stored JSON is served as it is
+pub enum JobResult {
+    Lightcurve(Box<Response>),
+    Fit(Box<LightcurveFit>),
+}
+
+/// A finished job's result: a light curve (JSON, or CSV when `Accept` names `text/csv`),
+/// or a fit job's result (JSON only).
 #[utoipa::path(
     get, path = "/v1/jobs/{id}/result", tag = "jobs",
     params(("id" = String, Path, description = "Job id")),
     responses(
-        (status = 200, description = "The light curve", content(
-            (Response = "application/json"),
+        (status = 200, description = "The light curve, or the fit", content(
+            (JobResult = "application/json"),
             (String = "text/csv"))),
         (status = 404, description = "No such job", body = ErrorBody),
+        (status = 406, description = "CSV asked of a fit's result, which is JSON only", body = ErrorBody),
         (status = 409, description = "The job is not done (yet)", body = ErrorBody),
     )
 )]
@@ -175,6 +193,13 @@ pub async fn get_job_result(
     let json = st.jobs.result(&id).await?;
     if !wants_csv(&headers) {
         return Ok(body_response(json, false));
+    }
+    if st.jobs.kind(&id) == Some(JobKind::FitLightcurve) {
+        return Err(ApiError::new(
+            StatusCode::NOT_ACCEPTABLE,
+            "a fit's result is JSON only: ask for `application/json`",
+        )
+        .with_field("Accept"));
     }
     let csv = run_blocking("converting the result", move || {
         serde_json::from_slice::<Response>(&json).map(|r| to_csv(&r).into_bytes())
@@ -206,6 +231,9 @@ pub async fn get_thumbnail(
         .and_then(|s| s.parse().ok())
         .ok_or_else(|| ApiError::not_found("expected `{epoch}.png`").with_field("epoch"))?;
     let json = st.jobs.result(&id).await?;
+    if st.jobs.kind(&id) == Some(JobKind::FitLightcurve) {
+        return Err(ApiError::not_found("a fit job renders no images").with_field("epoch"));
+    }
     let png = run_blocking("reading the image", move || -> Result<Vec<u8>, ApiError> {
         let resp: Response = serde_json::from_slice(&json).map_err(ApiError::internal)?;
         let thumb = resp

@@ -323,3 +323,51 @@ fn downloads_of_a_large_result_hold_a_bounded_part_of_it() {
     p.child.wait().unwrap();
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_fit_job_survives_kill_9_and_gives_the_librarys_fit() {
+    // A fit with the yaw free (twelve yaw starts: a hundred or more light curves) is killed
+    // while it runs; started again on the same data directory, it runs from the start and
+    // gives exactly the library's fit of the same body (only the wall time differs).
+    let dir = temp_dir("fit-restart");
+    let p = spawn(&dir);
+    let (request, observed) = fit_inputs("box-wing", 5, 1, 0.25, 0.4, 23);
+    let body = serde_json::json!({
+        "request": request,
+        "observed": observed,
+        "free": ["materials.panel.albedo", "attitude.yaw_deg"],
+        "start": { "attitude.yaw_deg": 20.0 }
+    });
+    let r = post_json(p.addr, "/v1/fits/lightcurve", &body.to_string());
+    assert_eq!(r.status, 202, "{}", r.text());
+    let id = r.json()["id"].as_str().unwrap().to_string();
+    let start = Instant::now();
+    loop {
+        let s = get(p.addr, &format!("/v1/jobs/{id}")).json();
+        if s["state"] == "running" && s["evaluations_done"].as_u64().unwrap() > 2 {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "never ran: {s}");
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let mut child = p.child;
+    child.kill().unwrap(); // SIGKILL mid-fit
+    child.wait().unwrap();
+
+    let mut p = spawn(&dir);
+    let s = wait_final(p.addr, &id, &[], Duration::from_secs(600));
+    assert_eq!(s["state"], "done", "{s}");
+    assert_eq!(s["attempts"], 2, "{s}");
+    assert_eq!(s["kind"], "fit-lightcurve", "{s}");
+    let got: serde_json::Value =
+        serde_json::from_slice(&get(p.addr, &format!("/v1/jobs/{id}/result")).body).unwrap();
+    let want = serde_json::to_value(direct_fit(&body)).unwrap();
+    for k in ["parameters", "uncertainty", "chi2", "correlation", "curve"] {
+        assert_eq!(got[k], want[k], "{k}");
+    }
+    assert_eq!(got["solver"]["evaluations"], want["solver"]["evaluations"]);
+    assert_eq!(s["evaluations_done"], want["solver"]["evaluations"]);
+    p.child.kill().unwrap();
+    p.child.wait().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,15 +1,16 @@
 //! Durable job storage: a redb database in the data directory.
 //!
 //! Tables keyed by job id: the job record (JSON), the request body as received, and once
-//! done the result, written in the forms it is served in — the response JSON and its CSV
-//! as numbered chunks, each thumbnail as its PNG — with their sizes. A result is never
+//! done the result, written in the forms it is served in — a light curve's response JSON
+//! and its CSV as numbered chunks, each thumbnail as its PNG; a fit's JSON only, in
+//! chunks too — with their sizes. A result is never
 //! read whole: a download reads one chunk at a time, so a large result costs the service
 //! a chunk of memory per download, not the result. Every change is one committed
 //! transaction with redb's default `Durability::Immediate` (fsync before `commit`
 //! returns), so a job whose 202 was sent is on disk, and a crash (even `kill -9`) loses
 //! nothing that was answered.
 
-use super::record::JobRecord;
+use super::record::{JobKind, JobRecord};
 use crate::scene::Response;
 use base64::Engine as _;
 use redb::{Database, ReadableDatabase, ReadableTable, TableDefinition, WriteTransaction};
@@ -39,12 +40,21 @@ pub const CHUNK_BYTES: usize = (1 << 20) - 4096;
 /// the pages of the results being written and downloaded; the records need little.
 const CACHE_BYTES: usize = 16 << 20;
 
+/// What a finished job stores.
+#[derive(Debug)]
+pub enum Output {
+    /// A light curve: served as its JSON, its CSV and its thumbnails.
+    Lightcurve(Response),
+    /// A light-curve fit's result, as its JSON: served as JSON only.
+    Fit(Vec<u8>),
+}
+
 /// A form in which a result is stored and served.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Form {
-    /// The response, as `serde_json` writes it.
+    /// The result, as `serde_json` writes it.
     Json,
-    /// The light curve as CSV ([`crate::report::csv`]).
+    /// The light curve as CSV ([`crate::report::csv`]); a fit has none (0 bytes).
     Csv,
 }
 
@@ -171,8 +181,9 @@ impl Store {
     }
 
     /// Rewrites each result kept whole (by a version before results were chunked) in the
-    /// chunked forms, one result a transaction. A result that does not parse is dropped
-    /// from the old table and logged: its job then answers 404 for it, as for an expired one.
+    /// chunked forms, one result a transaction: a fit job's (its record says so) as its
+    /// JSON, as it was. A light curve that does not parse is dropped from the old table and
+    /// logged: its job then answers 404 for it, as for an expired one.
     fn move_legacy_results(&self) -> Result<(), StoreError> {
         let ids: Vec<String> = self.with_db(|db| {
             let tx = db.begin_read()?;
@@ -190,14 +201,25 @@ impl Store {
         for id in ids {
             self.with_db(|db| {
                 let tx = db.begin_write()?;
+                let fit = match tx.open_table(JOBS)?.get(id.as_str())? {
+                    Some(v) => serde_json::from_slice::<JobRecord>(v.value())
+                        .is_ok_and(|r| r.kind == JobKind::FitLightcurve),
+                    None => false,
+                };
                 let parsed = {
                     let mut t = tx.open_table(LEGACY_RESULTS)?;
                     let old = t.remove(id.as_str())?;
-                    old.map(|v| serde_json::from_slice::<Response>(v.value()))
+                    old.map(|v| {
+                        if fit {
+                            Ok(Output::Fit(v.value().to_vec()))
+                        } else {
+                            serde_json::from_slice::<Response>(v.value()).map(Output::Lightcurve)
+                        }
+                    })
                 };
                 match parsed {
-                    Some(Ok(resp)) => {
-                        write_result(&tx, &id, &resp)?;
+                    Some(Ok(out)) => {
+                        write_result(&tx, &id, &out)?;
                     }
                     Some(Err(e)) => {
                         tracing::warn!(
@@ -271,10 +293,10 @@ impl Store {
         })
     }
 
-    /// Rewrites a job record. With `result`, also stores the response in its served forms
-    /// (written chunk by chunk, never whole in memory); a job that reached a final state
-    /// drops its request body (it will not run again).
-    pub fn update(&self, rec: &JobRecord, result: Option<&Response>) -> Result<(), StoreError> {
+    /// Rewrites a job record. With `result`, also stores it in its served forms (written
+    /// chunk by chunk, never whole in memory); a job that reached a final state drops its
+    /// request body (it will not run again).
+    pub fn update(&self, rec: &JobRecord, result: Option<&Output>) -> Result<(), StoreError> {
         let value = serde_json::to_vec(rec)?;
         let (added, freed) = self.with_db(|db| {
             let tx = db.begin_write()?;
@@ -448,8 +470,21 @@ fn open_db(path: &Path) -> Result<Database, StoreError> {
     Ok(db)
 }
 
-/// Writes `resp` for job `id` in every served form within `tx`; returns the bytes stored.
-fn write_result(tx: &WriteTransaction, id: &str, resp: &Response) -> Result<u64, StoreError> {
+/// Writes `out` for job `id` in every form it is served in within `tx`; returns the bytes
+/// stored.
+fn write_result(tx: &WriteTransaction, id: &str, out: &Output) -> Result<u64, StoreError> {
+    let resp = match out {
+        Output::Lightcurve(resp) => resp,
+        Output::Fit(json) => {
+            let mut chunks = tx.open_table(RESULT_CHUNKS)?;
+            let mut w = Chunks::new(&mut chunks, id, Form::Json);
+            w.write_all(json).map_err(|e| w.error(e))?;
+            let n = w.finish()?;
+            drop(chunks);
+            tx.open_table(RESULT_SIZES)?.insert(id, (n, 0, 0))?;
+            return Ok(n);
+        }
+    };
     let mut chunks = tx.open_table(RESULT_CHUNKS)?;
     let mut json = Chunks::new(&mut chunks, id, Form::Json);
     serde_json::to_writer(&mut json, resp).map_err(|e| json.error(e.into()))?;
@@ -582,6 +617,8 @@ mod tests {
             error: None,
             attempts: 1,
             idempotency: None,
+            kind: JobKind::Lightcurve,
+            evaluations: None,
         }
     }
 
@@ -614,7 +651,9 @@ mod tests {
             "{} bytes: one chunk only",
             json.len()
         );
-        store.update(&done_record("a"), Some(&resp)).unwrap();
+        store
+            .update(&done_record("a"), Some(&Output::Lightcurve(resp.clone())))
+            .unwrap();
 
         assert_eq!(
             store.result_len("a", Form::Json).unwrap(),

@@ -2,10 +2,10 @@
 //! are free, and one job's run: the stored request parsed again, computed on the job
 //! pool, and its outcome stored before it is shown.
 
-use super::{now_ms, JobRecord, JobState, Jobs};
+use super::{fit, now_ms, JobKind, JobRecord, JobState, Jobs};
 use crate::integrate::{Cancelled, Progress};
-use crate::scene::{validate, Response, Scene};
-use crate::service::store::StoreError;
+use crate::scene::{validate, Scene};
+use crate::service::store::{Output, StoreError};
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use tokio::sync::mpsc;
@@ -44,7 +44,7 @@ impl Jobs {
     /// One run of job `id` on the job pool, holding `slot` until the computation has
     /// stopped; its outcome is stored by [`Self::finish`].
     async fn run(self: &Arc<Self>, id: &str, slot: tokio::sync::OwnedSemaphorePermit) {
-        let progress = {
+        let (kind, progress, evaluations) = {
             let mut t = self.table();
             let Some(e) = t.get_mut(id) else { return };
             if e.rec.state != JobState::Queued || self.shutting_down.load(Ordering::SeqCst) {
@@ -54,7 +54,8 @@ impl Jobs {
             e.rec.started_ms = Some(now_ms());
             e.rec.attempts += 1;
             e.progress = Arc::new(Progress::new());
-            e.progress.clone()
+            e.evaluations = Default::default();
+            (e.rec.kind, e.progress.clone(), e.evaluations.clone())
         };
         let me = self.clone();
         let key = id.to_string();
@@ -67,13 +68,19 @@ impl Jobs {
                 .map_err(|e| e.to_string())?
                 .ok_or("the stored request is missing")?;
             let text = std::str::from_utf8(&body).map_err(|_| "request body is not UTF-8")?;
+            if kind == JobKind::FitLightcurve {
+                let run = me
+                    .pool
+                    .install(|| fit::run(text, &me.limits, me.engine, &progress, &evaluations));
+                return run.map(|done| done.map(|(json, n)| (Output::Fit(json), n)));
+            }
             let scene = validate::parse_request(text)
                 .and_then(|r| Scene::from_request(&r, &me.limits.job_limits()))
                 .map_err(|e| e.to_string())?;
             match me.pool.install(|| (me.engine)(&scene, &progress)) {
                 Ok(resp) => {
                     let n = resp.epochs.len();
-                    Ok(Some((resp, n)))
+                    Ok(Some((Output::Lightcurve(resp), n)))
                 }
                 Err(Cancelled) => Ok(None),
             }
@@ -121,19 +128,18 @@ impl Jobs {
 
     /// Stores a run's outcome, then shows it: a job is `done` in the table only once its
     /// result is committed, so a client never sees `done` without a result to fetch.
-    fn finish(
-        &self,
-        id: &str,
-        outcome: Result<(Response, usize), String>,
-    ) -> Result<(), StoreError> {
+    fn finish(&self, id: &str, outcome: Result<(Output, usize), String>) -> Result<(), StoreError> {
         let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
         let mut rec = match self.table().get(id) {
             // Not running any more: cancelled (and persisted) meanwhile.
             Some(e) if e.rec.state == JobState::Running => e.rec.clone(),
             _ => return Ok(()),
         };
+        if let Some(e) = self.table().get(id) {
+            rec.evaluations = e.evaluations_so_far();
+        }
         let result = settle(&mut rec, outcome, now_ms(), || {
-            self.table().get(id).map_or(0, |e| e.progress.done())
+            self.table().get(id).map_or(0, |e| e.epochs_so_far())
         });
         self.store.update(&rec, result.as_ref())?;
         if rec.state == JobState::Done {

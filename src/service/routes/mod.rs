@@ -6,7 +6,7 @@
 //! | routes | file |
 //! |---|---|
 //! | `POST /v1/lightcurves` | `lightcurves.rs` |
-//! | `POST /v1/fits/brdf` | `fits.rs` |
+//! | `POST /v1/fits/brdf`, `POST /v1/fits/lightcurve` (a job) | `fits.rs` |
 //! | `/v1/jobs…` | `jobs.rs` |
 //! | `/v1/scenes…` | `scenes.rs` |
 //! | `/healthz`, `/readyz`, `/metrics` | `health.rs` |
@@ -34,6 +34,7 @@ pub fn api_router() -> OpenApiRouter<AppState> {
     OpenApiRouter::with_openapi(ApiDoc::openapi())
         .routes(routes!(lightcurves::post_lightcurve))
         .routes(routes!(fits::post_brdf_fit))
+        .routes(routes!(fits::post_lightcurve_fit))
         .routes(routes!(jobs::post_job, jobs::list_jobs))
         .routes(routes!(jobs::get_job, jobs::delete_job))
         .routes(routes!(jobs::get_job_result))

@@ -723,4 +723,49 @@ mod tests {
         assert_eq!(store.load_all().unwrap().len(), 1);
         let _ = std::fs::remove_dir_all(&dir);
     }
+
+    #[test]
+    fn a_fits_result_is_stored_as_its_json_only_and_moved_as_it_was() {
+        let dir = temp("fit");
+        std::fs::create_dir_all(&dir).unwrap();
+        let json = br#"{"parameters":{"materials.surface.albedo":0.25}}"#.to_vec();
+        let fit_record = |id: &str| JobRecord {
+            kind: JobKind::FitLightcurve,
+            ..done_record(id)
+        };
+        {
+            // kept whole by an earlier version: not a light curve, yet not dropped
+            let db = Database::create(dir.join(FILE_NAME)).unwrap();
+            let tx = db.begin_write().unwrap();
+            {
+                let rec = serde_json::to_vec(&fit_record("old")).unwrap();
+                tx.open_table(JOBS)
+                    .unwrap()
+                    .insert("old", rec.as_slice())
+                    .unwrap();
+                tx.open_table(REQUESTS).unwrap();
+                tx.open_table(LEGACY_RESULTS)
+                    .unwrap()
+                    .insert("old", json.as_slice())
+                    .unwrap();
+            }
+            tx.commit().unwrap();
+        }
+        let store = Store::open(&dir).unwrap();
+        store
+            .update(&fit_record("new"), Some(&Output::Fit(json.clone())))
+            .unwrap();
+        for id in ["old", "new"] {
+            assert_eq!(
+                store.read_result(id, Form::Json).unwrap().as_ref(),
+                Some(&json)
+            );
+            assert_eq!(store.result_len(id, Form::Csv).unwrap(), Some(0));
+            assert_eq!(store.thumbnail(id, 0).unwrap(), None);
+        }
+        assert_eq!(store.result_bytes(), 2 * json.len() as u64);
+        store.remove("new").unwrap();
+        assert_eq!(store.result_bytes(), json.len() as u64);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -26,6 +26,8 @@ cd "$(dirname "$0")/.."
 
 MODE=${1:-full}
 PORT=${PORT:-18190}
+# where cargo puts the binaries (CARGO_TARGET_DIR when set, as for a second work tree)
+TARGET=${CARGO_TARGET_DIR:-target}
 SCHEMATHESIS_VERSION=4.32.5
 WORK=$(mktemp -d -t glint-attack.XXXXXX)
 trap 'rm -rf "$WORK"' EXIT
@@ -35,7 +37,7 @@ quick)
     # the debug binary `cargo test` builds (a plain `cargo build` would compile it again,
     # with the features of the normal dependencies only)
     cargo test --locked --no-run --test service_restart >&2
-    BIN=target/debug/glint
+    BIN=$TARGET/debug/glint
     EXAMPLES=3 SCHEMA_SECONDS=120
     JOBS=6 KILLS=2 EPOCHS=20
     OVERLOAD=(4 64,128)
@@ -43,7 +45,7 @@ quick)
     ;;
 full)
     cargo build --release --locked --bin glint >&2
-    BIN=target/release/glint
+    BIN=$TARGET/release/glint
     EXAMPLES=100 SCHEMA_SECONDS=1200
     JOBS=40 KILLS=10 EPOCHS=400
     OVERLOAD=(20 64,128 --strict)

@@ -1,6 +1,7 @@
 //! Charts the object suite: time per epoch against triangle count, both on log scales, one
 //! colour per class; glint a solid line with filled dots, the peer (Mitsuba 3) dashed with
-//! open circles. In the house style of `glint tradeoff`'s chart (src/report/chart.rs).
+//! open circles. In the house style of `glint tradeoff`'s chart: its palette, axes, legend
+//! and note come from `glint::report::chart`.
 //!
 //! `cargo run --release --example suite_chart -- SUITE.csv [PEER.csv] [--out docs/suite.svg]`
 //!
@@ -8,19 +9,11 @@
 //! `benches/peer/mitsuba_lightcurve.py --summary` appends. Both are read by their header:
 //! `class`, `triangles`, `ms_per_epoch`.
 
+use glint::report::chart::{draw_legend, draw_mesh, draw_note, plain_decimals, PALETTE, SIZE};
 use plotters::prelude::*;
 use std::collections::BTreeMap;
 
-const PALETTE: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(255, 127, 14),
-    RGBColor(140, 86, 75),
-];
 const CLASSES: [&str; 5] = ["box-wing", "rocket-body", "fragment", "dish-sat", "cubesat"];
-const SIZE: (u32, u32) = (960, 600);
 
 /// class → (triangles, ms per epoch), sorted by triangles.
 type Points = BTreeMap<String, Vec<(f64, f64)>>;
@@ -103,21 +96,13 @@ fn draw(glint: &Points, peer: &Points, out: &str) -> Result<(), String> {
             (y0 / 3.0..y1 * 3.0).log_scale(),
         )
         .map_err(e)?;
-    let plain = |v: &f64| {
-        let digits = (-v.log10()).ceil().max(0.0) as usize;
-        format!("{v:.digits$}")
-    };
-    chart
-        .configure_mesh()
-        .x_desc("triangles (log)")
-        .y_desc("time per epoch (ms, log)")
-        .x_label_formatter(&|v| format!("{v:.0}"))
-        .y_label_formatter(&plain)
-        .label_style(font(13))
-        .axis_desc_style(font(15))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(e)?;
+    draw_mesh(
+        &mut chart,
+        ("triangles (log)", "time per epoch (ms, log)"),
+        &|v| format!("{v:.0}"),
+        &plain_decimals,
+        1,
+    )?;
     let mut others = Vec::new();
     let mut classes: Vec<&String> = glint.keys().chain(peer.keys()).collect();
     classes.sort_by_key(|c| {
@@ -164,21 +149,9 @@ fn draw(glint: &Points, peer: &Points, out: &str) -> Result<(), String> {
                 .map_err(e)?;
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(font(14))
-        .draw()
-        .map_err(e)?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerRight, 1)?;
     let note = "solid, filled: glint (whole simulate call per epoch);  dashed, open: Mitsuba 3 (LLVM, direct, 256 px, 16 spp, steady state)";
-    root.draw(&Text::new(
-        note,
-        (80, SIZE.1 as i32 - 16),
-        font(12).into_font().color(&RGBColor(80, 80, 80)),
-    ))
-    .map_err(e)?;
+    draw_note(&root, note, 1)?;
     root.present().map_err(e)?;
     Ok(())
 }

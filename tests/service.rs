@@ -1125,3 +1125,328 @@ fn request_bytes_in_flight_are_bounded_before_the_body_is_read() {
     // the first's bytes are released with its answer
     assert_eq!(post_json(addr, "/v1/lightcurves", &body).status, 200);
 }
+
+/// The answer to `raw` sent whole on a fresh connection, read until the server closes.
+fn raw_exchange(addr: std::net::SocketAddr, raw: &[u8]) -> Reply {
+    use std::io::{Read, Write};
+    let mut s = std::net::TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(20))).unwrap();
+    // the server may answer and close before it has read everything
+    let _ = s.write_all(raw);
+    let mut buf = Vec::new();
+    let _ = s.read_to_end(&mut buf);
+    reply_of(&buf)
+}
+
+#[test]
+fn an_overlong_uri_or_request_head_is_a_json_414_or_431() {
+    let server = Server::start("head-limits", |_| {});
+    let addr = server.addr;
+    let request = |target: &str, fields: &str| {
+        format!("GET {target} HTTP/1.1\r\nHost: {addr}\r\n{fields}Connection: close\r\n\r\n")
+    };
+    // over the service's URI limit (hyper would take it): ours, naming `uri`
+    let long = format!("/v1/jobs/{}", "a".repeat(10 << 10));
+    let r = raw_exchange(addr, request(&long, "").as_bytes());
+    assert_error(&r, 414, Some("uri"));
+    assert!(r.header("x-request-id").is_some());
+    // over hyper's own bounds, answered before any of the service's code runs: a 100 KiB
+    // target, one 200 KiB header field, 150 header fields
+    let huge = format!("/v1/jobs/{}", "a".repeat(100 << 10));
+    let big_field = format!("X-Big: {}\r\n", "b".repeat(200 << 10));
+    let many: String = (0..150).map(|i| format!("X-F{i}: {i}\r\n")).collect();
+    for raw in [
+        request(&huge, ""),
+        request("/healthz", &big_field),
+        request("/healthz", &many),
+    ] {
+        let r = raw_exchange(addr, raw.as_bytes());
+        assert_error(&r, 431, Some("headers"));
+        assert!(r.header("x-request-id").is_some(), "{:?}", r.headers);
+        assert_eq!(r.header("connection"), Some("close"));
+    }
+    // a head hyper cannot read (a control character in a field): a JSON 400
+    let r = raw_exchange(addr, request("/healthz", "X-Bad: a\x01b\r\n").as_bytes());
+    assert_error(&r, 400, None);
+    // a target of 8 KiB is still taken, and the service goes on answering
+    let ok = format!("/healthz?{}", "q".repeat(8000));
+    assert_eq!(raw_exchange(addr, request(&ok, "").as_bytes()).status, 200);
+    assert_eq!(get(addr, "/healthz").status, 200);
+}
+
+#[test]
+fn a_light_curve_turned_away_is_answered_before_its_body_is_read() {
+    // One slot and no waiting room: while one light curve computes, the next is turned
+    // away at once, without the service waiting for (or parsing) its body.
+    let server = Server::start("admit-before-body", |c| {
+        c.engine = slow_engine;
+        c.limits.max_concurrent = 1;
+        c.limits.max_queued = 0;
+    });
+    let addr = server.addr;
+    let body = scene_request("plate", 2);
+    std::thread::scope(|s| {
+        let first = s.spawn(|| post_json(addr, "/v1/lightcurves", &body));
+        let start = std::time::Instant::now();
+        while !get(addr, "/metrics")
+            .text()
+            .contains("glint_computations_running 1")
+        {
+            assert!(start.elapsed() < Duration::from_secs(30));
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        // the head announces a body that never comes
+        use std::io::{Read, Write};
+        let mut c = std::net::TcpStream::connect(addr).unwrap();
+        c.set_read_timeout(Some(Duration::from_secs(10))).unwrap();
+        let t = std::time::Instant::now();
+        c.write_all(
+            format!(
+                "POST /v1/lightcurves HTTP/1.1\r\nHost: {addr}\r\nContent-Type: application/json\r\n\
+                 Content-Length: {}\r\n\r\n",
+                body.len()
+            )
+            .as_bytes(),
+        )
+        .unwrap();
+        let mut buf = vec![0; 4096];
+        let n = c.read(&mut buf).unwrap_or(0);
+        let answer = String::from_utf8_lossy(&buf[..n]).into_owned();
+        assert!(answer.starts_with("HTTP/1.1 503"), "{answer:?}");
+        assert!(
+            answer.to_ascii_lowercase().contains("retry-after: 1"),
+            "{answer}"
+        );
+        // at once, not after the first's two seconds
+        assert!(
+            t.elapsed() < Duration::from_millis(1500),
+            "{:?}",
+            t.elapsed()
+        );
+        assert_eq!(first.join().unwrap().status, 200);
+    });
+    // the place comes back with the answer
+    assert_eq!(post_json(addr, "/v1/lightcurves", &body).status, 200);
+}
+
+#[test]
+fn a_body_declared_over_the_limit_is_refused_before_it_is_sent() {
+    let server = Server::start("declared-too-large", |c| c.limits.max_body_bytes = 1000);
+    for path in ["/v1/lightcurves", "/v1/jobs"] {
+        // the head alone: the body it announces never comes
+        let head = format!(
+            "POST {path} HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\n\
+             Content-Length: 1000000000000\r\n\r\n",
+            server.addr
+        );
+        let t = std::time::Instant::now();
+        let r = raw_exchange(server.addr, head.as_bytes());
+        assert_error(&r, 413, Some("body"));
+        assert!(t.elapsed() < Duration::from_secs(3), "{:?}", t.elapsed());
+    }
+}
+
+/// The fitted parameters, their 1σ, χ² and the light curves taken: what two fits of the
+/// same input must share (the wall time differs).
+fn fit_numbers(v: &serde_json::Value) -> serde_json::Value {
+    serde_json::json!([
+        v["parameters"],
+        v["uncertainty"],
+        v["chi2"],
+        v["solver"]["evaluations"]
+    ])
+}
+
+#[test]
+fn lightcurve_fit_job_submitted_polled_fetched_and_its_errors_named() {
+    // The truth: the box-wing's panel albedo 0.25 (every 10th epoch, 0.02 mag noise); the
+    // fit starts from 0.4. Its result must hold the truth within 3σ, with χ²/dof within
+    // 3 sd of 1 (sd √(2/dof) = 0.25 for 33 dof), and equal the library's own fit of the
+    // same body: the service adds nothing.
+    let server = Server::start("fit", |_| {});
+    let (request, observed) = fit_inputs("box-wing", 10, 1, 0.25, 0.4, 21);
+    let body = serde_json::json!({
+        "request": request,
+        "observed": observed,
+        "free": ["materials.panel.albedo"],
+        "max_evaluations": 60
+    });
+    let r = post_json(server.addr, "/v1/fits/lightcurve", &body.to_string());
+    assert_eq!(r.status, 202, "{}", r.text());
+    let s = r.json();
+    let id = s["id"].as_str().unwrap().to_string();
+    assert_eq!(
+        r.header("location"),
+        Some(format!("/v1/jobs/{id}").as_str())
+    );
+    assert_eq!(s["kind"], "fit-lightcurve");
+    assert_eq!(s["evaluations_max"], 60);
+    assert_eq!(s["epochs_total"], 60 * observed.len());
+
+    // Progress: light curves evaluated against the bound, rising, 100 once done.
+    let mut seen = Vec::new();
+    let start = std::time::Instant::now();
+    let s = loop {
+        let s = get(server.addr, &format!("/v1/jobs/{id}")).json();
+        if s["state"] == "running" {
+            let (done, pct) = (
+                s["evaluations_done"].as_u64().unwrap(),
+                s["percent"].as_f64().unwrap(),
+            );
+            assert!((pct - 100.0 * done as f64 / 60.0).abs() < 1e-9, "{s}");
+            assert_eq!(
+                s["epochs_done"].as_u64().unwrap(),
+                done * observed.len() as u64,
+                "{s}"
+            );
+            seen.push(done);
+        }
+        if ["done", "failed", "cancelled"].contains(&s["state"].as_str().unwrap()) {
+            break s;
+        }
+        assert!(start.elapsed() < Duration::from_secs(300), "{s}");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert_eq!(s["state"], "done", "{s}");
+    assert!(seen.windows(2).all(|w| w[0] <= w[1]), "{seen:?}");
+    assert_eq!(s["percent"], 100.0);
+    assert_eq!(s["result_url"], format!("/v1/jobs/{id}/result"));
+
+    let r = get(server.addr, &format!("/v1/jobs/{id}/result"));
+    assert_eq!(r.status, 200, "{}", r.text());
+    let fit = r.json();
+    let (a, sa) = (
+        fit["parameters"]["materials.panel.albedo"]
+            .as_f64()
+            .unwrap(),
+        fit["uncertainty"]["materials.panel.albedo"]
+            .as_f64()
+            .unwrap(),
+    );
+    println!(
+        "fit job: albedo {a:.4} ± {sa:.4}, chi2/dof {}, {} light curves",
+        fit["chi2_dof"], fit["solver"]["evaluations"]
+    );
+    assert!((a - 0.25).abs() < 3.0 * sa, "{a} ± {sa}");
+    let chi2_dof = fit["chi2_dof"].as_f64().unwrap();
+    assert!((0.25..1.75).contains(&chi2_dof), "{chi2_dof}");
+    assert!(fit["solver"]["wall_time_s"].as_f64().unwrap() > 0.0);
+    let evaluations = fit["solver"]["evaluations"].as_u64().unwrap();
+    assert_eq!(s["evaluations_done"].as_u64(), Some(evaluations));
+    assert_eq!(
+        s["epochs_done"].as_u64(),
+        Some(evaluations * observed.len() as u64)
+    );
+    let direct = serde_json::to_value(direct_fit(&body)).unwrap();
+    assert_eq!(fit_numbers(&fit), fit_numbers(&direct));
+
+    // A fit's result is JSON only, and it has no images.
+    let r = http(
+        server.addr,
+        "GET",
+        &format!("/v1/jobs/{id}/result"),
+        &[("Accept", "text/csv")],
+        b"",
+    );
+    assert_error(&r, 406, Some("Accept"));
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{id}/thumbnails/0.png")),
+        404,
+        Some("epoch"),
+    );
+
+    // Bad bodies: each named, nothing stored.
+    let bad = |edit: &dyn Fn(&mut serde_json::Value), status: u16, field: &str| {
+        let mut b = body.clone();
+        edit(&mut b);
+        let r = post_json(server.addr, "/v1/fits/lightcurve", &b.to_string());
+        assert_error(&r, status, Some(field));
+    };
+    bad(
+        &|b| b["request"]["object"]["materials"][1]["albedo"] = serde_json::json!(2.0),
+        422,
+        "request.object.materials[1].albedo",
+    );
+    bad(
+        &|b| b["observed"][1]["t"] = serde_json::json!(1.5),
+        422,
+        "observed[1].t",
+    );
+    bad(
+        &|b| b["free"] = serde_json::json!(["materials.wing.albedo"]),
+        422,
+        "free[0]",
+    );
+    bad(
+        &|b| b["start"] = serde_json::json!({"materials.panel.albedo": 3.0}),
+        422,
+        "start.materials.panel.albedo",
+    );
+    bad(
+        &|b| b["max_evaluations"] = serde_json::json!(3),
+        422,
+        "max_evaluations",
+    );
+    bad(
+        &|b| b["yaw_starts"] = serde_json::json!(0),
+        422,
+        "yaw_starts",
+    );
+    bad(&|b| b["loss"] = serde_json::json!("l1"), 422, "loss");
+    // its whole work bounded before it starts: 268 triangles × 34 epochs × 10⁹ curves
+    bad(
+        &|b| b["max_evaluations"] = serde_json::json!(1_000_000_000u64),
+        413,
+        "max_evaluations",
+    );
+    assert_eq!(
+        get(server.addr, "/v1/jobs")
+            .json()
+            .as_array()
+            .unwrap()
+            .len(),
+        1
+    );
+}
+
+#[test]
+fn a_running_fit_job_is_cancelled_within_a_light_curve() {
+    let server = Server::start("fit-cancel", |_| {});
+    let (request, observed) = fit_inputs("box-wing", 5, 1, 0.25, 0.4, 22);
+    let body = serde_json::json!({
+        "request": request,
+        "observed": observed,
+        "free": ["materials.panel.albedo", "attitude.yaw_deg"]
+    });
+    let r = post_json(server.addr, "/v1/fits/lightcurve", &body.to_string());
+    assert_eq!(r.status, 202, "{}", r.text());
+    let id = r.json()["id"].as_str().unwrap().to_string();
+    let start = std::time::Instant::now();
+    loop {
+        let s = get(server.addr, &format!("/v1/jobs/{id}")).json();
+        if s["state"] == "running" && s["evaluations_done"].as_u64().unwrap() > 0 {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(120), "never ran: {s}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let r = http(server.addr, "DELETE", &format!("/v1/jobs/{id}"), &[], b"");
+    assert_eq!(r.status, 200, "{}", r.text());
+    let s = r.json();
+    assert_eq!(s["state"], "cancelled");
+    let done = s["evaluations_done"].as_u64().unwrap();
+    assert!(done > 0 && done < 400, "{s}");
+    // it stays cancelled, and has no result
+    std::thread::sleep(Duration::from_millis(500));
+    let s = get(server.addr, &format!("/v1/jobs/{id}")).json();
+    assert_eq!(
+        (s["state"].as_str(), s["evaluations_done"].as_u64()),
+        (Some("cancelled"), Some(done)),
+        "{s}"
+    );
+    assert_error(
+        &get(server.addr, &format!("/v1/jobs/{id}/result")),
+        409,
+        None,
+    );
+}

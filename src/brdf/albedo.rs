@@ -12,7 +12,7 @@
 //! polar angle out to eight lobe slopes (e^−64 of the peak), even in azimuth. No cosine
 //! is divided by: f·cosθr is the projected value over cosθi, and θi stays below 90°.
 
-use super::{Brdf, Frame};
+use super::{Brdf, Frame, SeedMicrofacet};
 use crate::radiometry::earth::gauss_legendre;
 use glam::DVec3;
 
@@ -57,6 +57,30 @@ pub fn albedo(brdf: &Brdf) -> Albedo {
         max,
         max_at_deg,
     }
+}
+
+/// The seed model in its normalised form (`"normalised": true`): `km` is the lobe's
+/// directional albedo at normal incidence, so Eq. 8 is evaluated with k^M = km / a, a the
+/// albedo at normal incidence of the lobe with k^M = 1 (docs/physics.md §6.6), and the
+/// material's albedo at normal incidence is kd + km. `Err(a)` when that lobe reflects
+/// (almost) nothing (a ≤ 1e-9: n ≈ 1, k ≈ 0), so km cannot be scaled to an albedo.
+/// Parameters as [`SeedMicrofacet::new`] takes them (km = 0 is left as it is).
+pub fn normalised_seed(
+    kd: f64,
+    km: f64,
+    slope_rms: f64,
+    n: f64,
+    k: f64,
+) -> Result<SeedMicrofacet, f64> {
+    if km <= 0.0 {
+        return Ok(SeedMicrofacet::new(kd, km, slope_rms, n, k));
+    }
+    let unit = Brdf::SeedMicrofacet(SeedMicrofacet::new(0.0, 1.0, slope_rms, n, k));
+    let a = directional(&unit, 0.0, 0.0);
+    if a <= 1e-9 {
+        return Err(a);
+    }
+    Ok(SeedMicrofacet::new(kd, km / a, slope_rms, n, k))
 }
 
 /// ρ(θi) for light at incidence `theta_i` (rad, below π/2) and azimuth `phi_i` from the

@@ -161,6 +161,39 @@ impl Half {
             fresnel: fresnel.reflectance(cos_b),
         })
     }
+
+    /// [`Half::new`] for a specular lobe of weight `weight` (k^M, k_s): `None` when the
+    /// weight is 0, which lights nothing.
+    #[inline]
+    pub fn of_lobe(weight: f64, l: DVec3, v: DVec3, fresnel: &fresnel::Fresnel) -> Option<Half> {
+        if weight == 0.0 {
+            return None;
+        }
+        Half::new(l, v, fresnel)
+    }
+}
+
+/// f·cosθi·cosθr (sr⁻¹) of a microfacet model with a Lambert term: (kd/π)·cosθi·cosθr,
+/// plus `lobe(half, n·h)` where its specular lobe can light the face of normal `n`
+/// (a half vector, and n·h > 0). `ci`, `cr` > 0 are given by the caller.
+#[inline]
+fn diffuse_and_lobe(
+    kd: f64,
+    n: DVec3,
+    half: &Option<Half>,
+    ci: f64,
+    cr: f64,
+    lobe: impl FnOnce(&Half, f64) -> f64,
+) -> f64 {
+    let diffuse = kd * std::f64::consts::FRAC_1_PI * ci * cr;
+    let Some(half) = half else {
+        return diffuse;
+    };
+    let cos_h = n.dot(half.h);
+    if cos_h <= 0.0 {
+        return diffuse;
+    }
+    diffuse + lobe(half, cos_h)
 }
 
 /// A BRDF with its light direction `l` and view direction `v` fixed (one epoch): the

@@ -12,9 +12,9 @@
 //! at α 1; at 89.9° and α 0.1 it is 8.6.
 
 use super::fresnel::Fresnel;
-use super::Half;
+use super::{diffuse_and_lobe, Half};
 use glam::DVec3;
-use std::f64::consts::{FRAC_1_PI, PI};
+use std::f64::consts::PI;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RoughConductor {
@@ -60,31 +60,22 @@ impl RoughConductor {
     /// What the specular term needs that depends on the directions only, not on the face.
     #[inline]
     pub fn half(&self, l: DVec3, v: DVec3) -> Option<Half> {
-        if self.ks == 0.0 {
-            return None;
-        }
         // cos_b ≥ 0 as Half clamps it: the Fresnel term clamps its argument the same way
-        Half::new(l, v, &self.fresnel)
+        Half::of_lobe(self.ks, l, v, &self.fresnel)
     }
 
     /// f·cosθi·cosθr, sr⁻¹, given the face-independent part ([`RoughConductor::half`]).
     #[inline]
     pub fn projected_fixed(&self, n: DVec3, half: &Option<Half>, ci: f64, cr: f64) -> f64 {
-        let diffuse = self.kd * FRAC_1_PI * ci * cr;
-        let Some(half) = half else {
-            return diffuse;
-        };
-        let ch = n.dot(half.h);
-        if ch <= 0.0 {
-            return diffuse;
-        }
-        let d = beckmann_d(ch, self.alpha);
-        let (li, lr) = (lambda(ci, self.alpha), lambda(cr, self.alpha));
-        let g = match self.shadowing {
-            Shadowing::Separable => 1.0 / ((1.0 + li) * (1.0 + lr)),
-            Shadowing::Correlated => 1.0 / (1.0 + li + lr),
-        };
-        diffuse + self.ks * half.fresnel * d * g * 0.25
+        diffuse_and_lobe(self.kd, n, half, ci, cr, |half, ch| {
+            let d = beckmann_d(ch, self.alpha);
+            let (li, lr) = (lambda(ci, self.alpha), lambda(cr, self.alpha));
+            let g = match self.shadowing {
+                Shadowing::Separable => 1.0 / ((1.0 + li) * (1.0 + lr)),
+                Shadowing::Correlated => 1.0 / (1.0 + li + lr),
+            };
+            self.ks * half.fresnel * d * g * 0.25
+        })
     }
 }
 

@@ -3,9 +3,8 @@
 //! f·cosθi·cosθr = k^D/π·cosθi·cosθr + k^M·C·V·F, which is finite at grazing angles.
 
 use super::fresnel::Fresnel;
-use super::Half;
+use super::{diffuse_and_lobe, Half};
 use glam::DVec3;
-use std::f64::consts::FRAC_1_PI;
 
 /// Parameters of Eqs. 6–8.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,29 +32,19 @@ impl SeedMicrofacet {
     /// What the specular term needs that depends on the directions only, not on the face.
     #[inline]
     pub fn half(&self, l: DVec3, v: DVec3) -> Option<Half> {
-        if self.km == 0.0 {
-            return None;
-        }
-        Half::new(l, v, &self.fresnel)
+        Half::of_lobe(self.km, l, v, &self.fresnel)
     }
 
     /// f·cosθi·cosθr, sr⁻¹, given the face-independent part ([`SeedMicrofacet::half`]);
     /// `ci`, `cr` > 0 are given by the caller.
     #[inline]
     pub fn projected_fixed(&self, n: DVec3, half: &Option<Half>, ci: f64, cr: f64) -> f64 {
-        let diffuse = self.kd * FRAC_1_PI * ci * cr;
-        let Some(half) = half else {
-            return diffuse;
-        };
-        let ca = n.dot(half.h);
-        if ca <= 0.0 {
-            return diffuse;
-        }
-        diffuse
-            + self.km
+        diffuse_and_lobe(self.kd, n, half, ci, cr, |half, ca| {
+            self.km
                 * slope_distribution(ca, self.slope_rms)
                 * v_cavity(ca, half.cos_b, ci, cr)
                 * half.fresnel
+        })
     }
 }
 

@@ -4,7 +4,7 @@
 //! Each command is its arguments and a `run_*` function; what they share (reading a file,
 //! `NAME=VALUE` lists, writing the result and the plot, printing warnings) is at the end.
 
-use crate::fit::{brdf, lightcurve, params, solve::Loss};
+use crate::fit::{brdf, lightcurve, params};
 use crate::report::fit_plot;
 use crate::scene::validate;
 use anyhow::Context;
@@ -36,6 +36,10 @@ pub struct FitBrdfArgs {
     /// Residual space: log (default) or linear.
     #[arg(long, default_value = "log")]
     pub space: String,
+    /// seed-microfacet only: fit the normalised form (km the lobe's albedo at normal
+    /// incidence; kd + km ≤ 1), as a material with `"normalised": true`.
+    #[arg(long)]
+    pub normalised: bool,
 }
 
 /// `glint fit-brdf`: a material model fitted to the samples of a CSV file.
@@ -54,6 +58,7 @@ pub fn run_brdf(args: &FitBrdfArgs) -> anyhow::Result<()> {
         loss: Some(args.loss.clone()),
         space: Some(args.space.clone()),
         plot: None,
+        normalised: Some(args.normalised),
     };
     let opts = brdf::Options::from_request(&request).map_err(|e| {
         anyhow::anyhow!(
@@ -89,8 +94,13 @@ pub fn run_brdf(args: &FitBrdfArgs) -> anyhow::Result<()> {
 /// the misfit and albedo, the warnings.
 fn print_brdf_summary(result: &brdf::BrdfFit) {
     println!(
-        "{} fitted to {} samples ({} starts, {} evaluations, {:.2} s, loss {}, {} space)",
+        "{}{} fitted to {} samples ({} starts, {} evaluations, {:.2} s, loss {}, {} space)",
         result.model,
+        if result.normalised {
+            " (normalised)"
+        } else {
+            ""
+        },
         result.samples,
         result.solver.starts,
         result.solver.evaluations,
@@ -134,6 +144,10 @@ pub struct SampleBrdfArgs {
     /// The CSV to write (`fit-brdf` reads it).
     #[arg(long)]
     pub out: PathBuf,
+    /// seed-microfacet only: the normalised form (km the lobe's albedo at normal
+    /// incidence).
+    #[arg(long)]
+    pub normalised: bool,
 }
 
 /// `glint sample-brdf`: synthetic samples of a model at the paper's Fig. 2 geometry.
@@ -145,20 +159,30 @@ pub fn run_sample(args: &SampleBrdfArgs) -> anyhow::Result<()> {
             brdf::Model::NAMES
         )
     })?;
+    let model = model
+        .with_normalised(args.normalised)
+        .ok_or_else(|| anyhow::anyhow!("--normalised: applies only to model `seed-microfacet`"))?;
     let p = model_values(model, &args.params)?;
     if !(args.noise.is_finite() && args.noise >= 0.0) {
         anyhow::bail!("--noise: must be a finite number >= 0");
     }
-    let samples = brdf::synthetic(
-        &model.build(&p),
-        &brdf::paper_geometry(),
-        args.noise,
-        args.seed,
-    );
+    if model.is_normalised() && p[0] + p[1] > 1.0 {
+        anyhow::bail!(
+            "--params: kd + km = {} is above 1 (the normalised form's albedo at normal incidence)",
+            p[0] + p[1]
+        );
+    }
+    let brdf = model.try_build(&p).ok_or_else(|| {
+        anyhow::anyhow!(
+            "--params: with this n and k the lobe reflects nothing; km cannot be an albedo"
+        )
+    })?;
+    let samples = brdf::synthetic(&brdf, &brdf::paper_geometry(), args.noise, args.seed);
     let comment = format!(
-        "SYNTHETIC samples, not a measurement: `glint sample-brdf --model {} --params {} --noise {} --seed {}`\n\
+        "SYNTHETIC samples, not a measurement: `glint sample-brdf --model {}{} --params {} --noise {} --seed {}`\n\
          (the paper's Fig. 2 geometry: incidence 10, 30, 45, 60 degrees; phi = 180 is the forward side)",
         model.name(),
+        if model.is_normalised() { " --normalised" } else { "" },
         args.params,
         args.noise,
         args.seed
@@ -217,6 +241,13 @@ pub struct FitLightcurveArgs {
     /// l2 (default: weighted least squares), huber or cauchy.
     #[arg(long, default_value = "l2")]
     pub loss: String,
+    /// With the yaw free: yaws screened, evenly round the circle from its start (the three
+    /// of lowest χ² are solved); 1 solves from the start alone.
+    #[arg(long, default_value_t = lightcurve::DEFAULT_YAW_STARTS)]
+    pub yaw_starts: usize,
+    /// Most light curves the fit may evaluate, uncertainties included.
+    #[arg(long, default_value_t = lightcurve::DEFAULT_MAX_EVALUATIONS)]
+    pub max_evaluations: usize,
     /// Write the result as JSON.
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -239,19 +270,21 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
         .map(|s| s.trim().to_string())
         .filter(|s| !s.is_empty())
         .collect();
-    let loss = Loss::parse(&args.loss).ok_or_else(|| {
-        anyhow::anyhow!("--loss: expected l2, huber or cauchy, got `{}`", args.loss)
-    })?;
-    let opts = lightcurve::Options {
+    let body = lightcurve::LightcurveFitRequest {
+        request: request.clone(),
+        observed: Vec::new(),
         free: free.clone(),
         start: args
             .start
             .as_deref()
             .map(|s| assignments("--start", s))
-            .transpose()?
-            .unwrap_or_default(),
-        loss,
+            .transpose()?,
+        loss: Some(args.loss.clone()),
+        yaw_starts: Some(args.yaw_starts),
+        max_evaluations: Some(args.max_evaluations),
     };
+    let opts = lightcurve::Options::from_request(&body)
+        .map_err(|e| anyhow::anyhow!("--{}: {}", e.field.replace('_', "-"), e.message))?;
     let result = lightcurve::fit(&request, &observed, &opts).map_err(|e| {
         if let Some(i) = e
             .field
@@ -265,6 +298,8 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
             )
         } else if let Some(name) = e.field.strip_prefix("start.") {
             anyhow::anyhow!("--start {name}: {}", e.message)
+        } else if e.field == "max_evaluations" {
+            anyhow::anyhow!("--max-evaluations: {}", e.message)
         } else {
             anyhow::anyhow!("{e}")
         }
@@ -291,11 +326,13 @@ pub fn run_lightcurve(args: &FitLightcurveArgs) -> anyhow::Result<()> {
 /// given) with its 1σ and start, χ² and the RMS, the warnings.
 fn print_lightcurve_summary(result: &lightcurve::LightcurveFit, free: &[String]) {
     println!(
-        "{} parameters fitted to {} observations: {} light curves in {:.2} s",
+        "{} parameters fitted to {} observations: {} light curves in {:.2} s ({} solved from \
+         the starts)",
         free.len(),
         result.observations,
         result.solver.evaluations,
-        result.solver.wall_time_s
+        result.solver.wall_time_s,
+        result.solver.starts
     );
     for name in free {
         let v = result.parameters[name];

@@ -49,7 +49,8 @@ pub struct ServeArgs {
     /// Computations at once (light curves and jobs); default: the number of cores.
     #[arg(long, env = "GLINT_MAX_CONCURRENT")]
     pub max_concurrent: Option<usize>,
-    /// Light-curve requests that may wait for a computation slot; more get 503.
+    /// Light-curve requests that may wait for a computation slot; more get 503. With the
+    /// slots, also the light-curve requests admitted at once, before their body is read.
     #[arg(long, env = "GLINT_MAX_QUEUED", default_value_t = ServiceLimits::default().max_queued)]
     pub max_queued: usize,
     /// Jobs running at once.

@@ -356,43 +356,7 @@ pub struct Covariance {
 pub fn covariance<R: Residuals>(model: &R, bounds: &[Bound], sol: &Solution) -> Covariance {
     let (m, n) = (model.count(), sol.p.len());
     let mut evaluations = 0;
-    let sqrt_w: Vec<f64> = sol.weights.iter().map(|w| w.sqrt()).collect();
-    let mut eval = |p: &[f64]| -> Option<Vec<f64>> {
-        let mut r = vec![0.0; m];
-        evaluations += 1;
-        if !model.eval(p, &mut r) {
-            return None;
-        }
-        r.iter_mut().zip(&sqrt_w).for_each(|(x, w)| *x *= w);
-        r.iter().all(|x| x.is_finite()).then_some(r)
-    };
-    let mut j = DMatrix::zeros(m, n);
-    let mut ok = true;
-    for c in 0..n {
-        let b = bounds[c];
-        let p0 = sol.p[c];
-        let h = 1e-5 * p0.abs().max(1e-3 * (b.hi - b.lo).min(1.0)).max(1e-12);
-        let (lo, hi) = ((p0 - h).max(b.lo), (p0 + h).min(b.hi));
-        if hi <= lo {
-            ok = false;
-            break;
-        }
-        let mut pp = sol.p.clone();
-        pp[c] = hi;
-        let mut pm = sol.p.clone();
-        pm[c] = lo;
-        match (eval(&pp), eval(&pm)) {
-            (Some(rp), Some(rm)) => {
-                for r in 0..m {
-                    j[(r, c)] = (rp[r] - rm[r]) / (hi - lo);
-                }
-            }
-            _ => {
-                ok = false;
-                break;
-            }
-        }
-    }
+    let j = physical_jacobian(model, bounds, sol, &mut evaluations);
     let dof = m.saturating_sub(n).max(1) as f64;
     let s2 = sol
         .residuals
@@ -401,22 +365,83 @@ pub fn covariance<R: Residuals>(model: &R, bounds: &[Bound], sol: &Solution) -> 
         .map(|(r, w)| w * r * r)
         .sum::<f64>()
         / dof;
-    let none = || Covariance {
-        s2,
-        sigma: vec![None; n],
-        correlation: vec![vec![None; n]; n],
-        evaluations,
+    let Some((mut cov, undetermined)) = j.and_then(|j| inverse_normal(j, n)) else {
+        return Covariance {
+            s2,
+            sigma: vec![None; n],
+            correlation: vec![vec![None; n]; n],
+            evaluations,
+        };
     };
-    if !ok {
-        return none();
+    cov *= s2;
+    let sigma: Vec<Option<f64>> = (0..n)
+        .map(|c| {
+            let v = cov[(c, c)];
+            (!undetermined[c] && v.is_finite() && v >= 0.0).then(|| v.sqrt())
+        })
+        .collect();
+    let correlation = correlations(&cov, &sigma);
+    Covariance {
+        s2,
+        sigma,
+        correlation,
+        evaluations,
     }
-    // (JᵀJ)⁻¹ by SVD of J: J = U Σ Vᵀ ⇒ (JᵀJ)⁻¹ = V Σ⁻² Vᵀ; a singular value below 1e-10
-    // of the largest leaves its direction undetermined
+}
+
+/// J of the √ω-weighted residuals in the physical parameters at `sol` (central
+/// differences, one-sided at a bound), its evaluations counted in `evaluations`; `None`
+/// when a parameter has no room to move or the model cannot be evaluated beside the
+/// optimum.
+fn physical_jacobian<R: Residuals>(
+    model: &R,
+    bounds: &[Bound],
+    sol: &Solution,
+    evaluations: &mut usize,
+) -> Option<DMatrix<f64>> {
+    let (m, n) = (model.count(), sol.p.len());
+    let sqrt_w: Vec<f64> = sol.weights.iter().map(|w| w.sqrt()).collect();
+    let mut eval = |p: &[f64]| -> Option<Vec<f64>> {
+        let mut r = vec![0.0; m];
+        *evaluations += 1;
+        if !model.eval(p, &mut r) {
+            return None;
+        }
+        r.iter_mut().zip(&sqrt_w).for_each(|(x, w)| *x *= w);
+        r.iter().all(|x| x.is_finite()).then_some(r)
+    };
+    let mut j = DMatrix::zeros(m, n);
+    for c in 0..n {
+        let b = bounds[c];
+        let p0 = sol.p[c];
+        let h = 1e-5 * p0.abs().max(1e-3 * (b.hi - b.lo).min(1.0)).max(1e-12);
+        let (lo, hi) = ((p0 - h).max(b.lo), (p0 + h).min(b.hi));
+        if hi <= lo {
+            return None;
+        }
+        let mut pp = sol.p.clone();
+        pp[c] = hi;
+        let mut pm = sol.p.clone();
+        pm[c] = lo;
+        // both sides evaluated before either is judged, as the evaluation count says
+        let (rp, rm) = (eval(&pp), eval(&pm));
+        let (rp, rm) = (rp?, rm?);
+        for r in 0..m {
+            j[(r, c)] = (rp[r] - rm[r]) / (hi - lo);
+        }
+    }
+    Some(j)
+}
+
+/// (JᵀJ)⁻¹ by SVD of J (J = U Σ Vᵀ ⇒ (JᵀJ)⁻¹ = V Σ⁻² Vᵀ) over the `n` parameters, and which
+/// parameters it leaves undetermined: those with a share in a direction whose singular
+/// value is below 1e-10 of the largest. `None` when the SVD fails or J is zero.
+fn inverse_normal(j: DMatrix<f64>, n: usize) -> Option<(DMatrix<f64>, Vec<bool>)> {
     let svd = j.svd(false, true);
-    let Some(vt) = svd.v_t else { return none() };
+    let vt = svd.v_t?;
     let smax = svd.singular_values.iter().copied().fold(0.0, f64::max);
     if smax <= 0.0 || smax.is_nan() {
-        return none();
+        return None;
     }
     let mut cov = DMatrix::zeros(n, n);
     let mut undetermined = vec![false; n];
@@ -433,14 +458,14 @@ pub fn covariance<R: Residuals>(model: &R, bounds: &[Bound], sol: &Solution) -> 
         let row = vt.row(k);
         cov += row.transpose() * row / (s * s);
     }
-    cov *= s2;
-    let sigma: Vec<Option<f64>> = (0..n)
-        .map(|c| {
-            let v = cov[(c, c)];
-            (!undetermined[c] && v.is_finite() && v >= 0.0).then(|| v.sqrt())
-        })
-        .collect();
-    let correlation = (0..n)
+    Some((cov, undetermined))
+}
+
+/// The correlation matrix of `cov` (p × p) given each parameter's 1σ; `None` where either
+/// σ is missing or zero.
+fn correlations(cov: &DMatrix<f64>, sigma: &[Option<f64>]) -> Vec<Vec<Option<f64>>> {
+    let n = sigma.len();
+    (0..n)
         .map(|a| {
             (0..n)
                 .map(|b| match (sigma[a], sigma[b]) {
@@ -451,11 +476,5 @@ pub fn covariance<R: Residuals>(model: &R, bounds: &[Bound], sol: &Solution) -> 
                 })
                 .collect()
         })
-        .collect();
-    Covariance {
-        s2,
-        sigma,
-        correlation,
-        evaluations,
-    }
+        .collect()
 }

@@ -26,7 +26,9 @@ pub struct Line {
 /// Errors below this are drawn at it (log axes have no zero); the table has the values.
 pub const ERROR_FLOOR: f64 = 1e-7;
 
-const PALETTE: [RGBColor; 6] = [
+/// The house style's colours, one a series (the trade-off chart's methods, the suite
+/// chart's classes).
+pub const PALETTE: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(44, 160, 44),
     RGBColor(214, 39, 40),
@@ -38,8 +40,82 @@ const PALETTE: [RGBColor; 6] = [
 /// Chart size in pixels (PNG at this size; SVG in user units).
 pub const SIZE: (u32, u32) = (960, 600);
 
-/// The chart's coordinates: time per epoch (ms) and relative error, both log.
-type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+/// A chart with log scales on both axes (here: time per epoch, ms, and relative error).
+pub type LogLogChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+type Chart<'a, DB> = LogLogChart<'a, DB>;
+
+/// A log axis's labels as plain decimals: 0.01, 0.1, 1, 10.
+pub fn plain_decimals(v: &f64) -> String {
+    let digits = (-v.log10()).ceil().max(0.0) as usize;
+    format!("{v:.digits$}")
+}
+
+/// The axes' descriptions (x, y), their labels by `x_label` and `y_label`, and the light
+/// grid, in the house style; `k` scales every length.
+pub fn draw_mesh<DB: DrawingBackend>(
+    chart: &mut LogLogChart<'_, DB>,
+    (x_desc, y_desc): (&str, &str),
+    x_label: &dyn Fn(&f64) -> String,
+    y_label: &dyn Fn(&f64) -> String,
+    k: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let font = |px: u32| ("sans-serif", (px * k) as f64);
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(x_label)
+        .y_label_formatter(y_label)
+        .label_style(font(13))
+        .axis_desc_style(font(15))
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|x| x.to_string())
+}
+
+/// The legend of the series drawn with labels, boxed, at `position`; `k` scales every
+/// length.
+pub fn draw_legend<'a, DB: DrawingBackend + 'a>(
+    chart: &mut LogLogChart<'a, DB>,
+    position: SeriesLabelPosition,
+    k: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", (14 * k) as f64))
+        .draw()
+        .map_err(|x| x.to_string())
+}
+
+/// A grey note along the bottom of a [`SIZE`] chart (what the lines and marks mean);
+/// `k` scales every length.
+pub fn draw_note<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    note: &str,
+    k: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let kf = k as f64;
+    root.draw(&Text::new(
+        note,
+        ((80.0 * kf) as i32, (SIZE.1 as f64 * kf - 16.0 * kf) as i32),
+        ("sans-serif", (12 * k) as f64)
+            .into_font()
+            .color(&RGBColor(80, 80, 80)),
+    ))
+    .map_err(|x| x.to_string())
+}
 
 /// Draws the chart onto `root`; `k` scales every length (2 for the supersampled PNG).
 fn draw<DB: DrawingBackend>(
@@ -52,29 +128,15 @@ where
     DB::ErrorType: 'static,
 {
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
-    let kf = k as f64;
     root.fill(&WHITE).map_err(e)?;
     let (x_range, y_range) = ranges(lines)?;
-    let font = |px: u32| ("sans-serif", (px * k) as f64);
     let mut chart = axes(root, title, x_range, y_range, k)?;
     for (i, line) in lines.iter().enumerate() {
         draw_line(&mut chart, PALETTE[i % PALETTE.len()], line, k)?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(font(14))
-        .draw()
-        .map_err(e)?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight, k)?;
     let note = "solid, filled: max error over epochs;  dashed, open: RMS error;  errors below 1e-7 (exact: 0) drawn at 1e-7";
-    root.draw(&Text::new(
-        note,
-        ((80.0 * kf) as i32, (SIZE.1 as f64 * kf - 16.0 * kf) as i32),
-        font(12).into_font().color(&RGBColor(80, 80, 80)),
-    ))
-    .map_err(e)?;
+    draw_note(root, note, k)?;
     root.present().map_err(e)?;
     Ok(())
 }
@@ -122,22 +184,16 @@ where
         .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
         .map_err(e)?;
     let sci = |v: &f64| format!("{v:.0e}");
-    // plain decimals (0.01, 0.1, 1, 10) on the time axis
-    let ms = |v: &f64| {
-        let digits = (-v.log10()).ceil().max(0.0) as usize;
-        format!("{v:.digits$}")
-    };
-    chart
-        .configure_mesh()
-        .x_desc("time per epoch (ms, log)")
-        .y_desc("relative error of the irradiance (log)")
-        .x_label_formatter(&ms)
-        .y_label_formatter(&sci)
-        .label_style(font(13))
-        .axis_desc_style(font(15))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(e)?;
+    draw_mesh(
+        &mut chart,
+        (
+            "time per epoch (ms, log)",
+            "relative error of the irradiance (log)",
+        ),
+        &plain_decimals,
+        &sci,
+        k,
+    )?;
     Ok(chart)
 }
 
@@ -196,36 +252,33 @@ where
 
 /// The chart as SVG text.
 pub fn svg(title: &str, lines: &[Line]) -> Result<String, String> {
+    svg_with(SIZE, |root, k| draw(root, title, lines, k))
+}
+
+/// Any chart as SVG text, `size` user units: `draw` is called with the SVG drawing area
+/// and the scale 1 (the counterpart of [`png_with`]).
+pub(crate) fn svg_with(
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<SVGBackend<'_>, Shift>, u32) -> Result<(), String>,
+) -> Result<String, String> {
     let mut out = String::new();
     {
-        let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw(&root, title, lines, 1)?;
+        let root = SVGBackend::with_string(&mut out, size).into_drawing_area();
+        draw(&root, 1)?;
     }
     Ok(out)
 }
 
 /// The chart as PNG bytes.
 pub fn png(title: &str, lines: &[Line]) -> Result<Vec<u8>, String> {
-    let font = load_font()?;
-    let k = 2;
-    let mut canvas = Canvas::new(SIZE.0 * k, SIZE.1 * k, font);
-    {
-        let root = (&mut canvas).into_drawing_area();
-        draw(&root, title, lines, k)?;
-    }
-    let small = canvas.downsample(k);
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(&small, SIZE.0, SIZE.1, image::ExtendedColorType::Rgb8)
-        .map_err(|e| e.to_string())?;
-    Ok(bytes)
+    png_with(SIZE, |root, k| draw(root, title, lines, k))
 }
 
 use image::ImageEncoder;
 
 /// Any chart as PNG bytes, `size` pixels: `draw` is called with a canvas of twice that
 /// size and the scale 2 (lengths and fonts are to be multiplied by it), and the result
-/// averaged down, as [`png`] does for the trade-off chart.
+/// averaged down.
 pub(crate) fn png_with(
     size: (u32, u32),
     draw: impl FnOnce(&DrawingArea<&mut Canvas, Shift>, u32) -> Result<(), String>,

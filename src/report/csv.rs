@@ -12,15 +12,25 @@ pub const GEOMETRY_HEADER: &str = ",azimuth_deg,elevation_deg,sun_elevation_deg,
 /// CSV text with a header; an absent magnitude (no light) is an empty cell. A
 /// `geometry` request's curve has the site's view as four more columns.
 pub fn to_csv(response: &Response) -> String {
-    let mut s = String::with_capacity(64 + response.epochs.len() * 200);
-    s.push_str(HEADER);
+    let mut out = Vec::with_capacity(64 + response.epochs.len() * 200);
+    write_csv(response, &mut out).expect("writing to memory cannot fail");
+    String::from_utf8(out).expect("the CSV is ASCII")
+}
+
+/// [`to_csv`] written row by row to `out` (a file, or the service's store), never whole
+/// in memory.
+pub fn write_csv(response: &Response, out: &mut impl std::io::Write) -> std::io::Result<()> {
     let sky = response.epochs.iter().any(|e| e.azimuth_deg.is_some());
+    let mut s = String::with_capacity(512);
+    s.push_str(HEADER);
     if sky {
         s.push_str(GEOMETRY_HEADER);
     }
     s.push('\n');
+    out.write_all(s.as_bytes())?;
     let opt = |m: Option<f64>| m.map(|x| format!("{x:.6}")).unwrap_or_default();
     for e in &response.epochs {
+        s.clear();
         let _ = write!(
             s,
             "{},{:e},{:e},{:e},{:e},{},{},{:.6},{:.6e},{:.6e},{:.6},{}",
@@ -50,6 +60,7 @@ pub fn to_csv(response: &Response) -> String {
             );
         }
         s.push('\n');
+        out.write_all(s.as_bytes())?;
     }
-    s
+    Ok(())
 }

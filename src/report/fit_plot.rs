@@ -121,12 +121,7 @@ where
 /// The BRDF fit plot as SVG text: filled points in the plane of incidence, open points off
 /// it, lines the fitted model in the plane.
 pub fn brdf_svg(title: &str, groups: &[Incidence]) -> Result<String, String> {
-    let mut out = String::new();
-    {
-        let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw_brdf(&root, title, groups, 1)?;
-    }
-    Ok(out)
+    super::chart::svg_with(SIZE, |root, k| draw_brdf(root, title, groups, k))
 }
 
 /// [`brdf_svg`] as PNG bytes (needs a system TrueType font, as the trade-off chart).
@@ -281,12 +276,7 @@ where
 /// The light-curve fit plot as SVG text: magnitudes (bright up) with the fitted curve,
 /// and the residuals below.
 pub fn lightcurve_svg(title: &str, data: &LightcurvePlot) -> Result<String, String> {
-    let mut out = String::new();
-    {
-        let root = SVGBackend::with_string(&mut out, SIZE).into_drawing_area();
-        draw_lightcurve(&root, title, data, 1)?;
-    }
-    Ok(out)
+    super::chart::svg_with(SIZE, |root, k| draw_lightcurve(root, title, data, k))
 }
 
 /// [`lightcurve_svg`] as PNG bytes.

@@ -28,7 +28,9 @@ pub struct ServiceLimits {
     pub max_sync_pixel_samples: u64,
     /// Computations running at once (synchronous requests and jobs together).
     pub max_concurrent: usize,
-    /// Synchronous requests allowed to wait for a slot; beyond this they get 503.
+    /// Synchronous requests allowed to wait for a slot; beyond this they get 503. With
+    /// the slots, also the light-curve requests admitted at once (read, parsed, waiting or
+    /// computing): beyond, the 503 comes before the body is read.
     pub max_queued: usize,
     /// Jobs running at once (each also takes a computation slot).
     pub max_running_jobs: usize,
@@ -102,6 +104,9 @@ pub struct Slots {
     max_waiting: usize,
     waiting: AtomicUsize,
     total: usize,
+    /// Light-curve requests admitted at once, from before their body is read until their
+    /// answer: the slots plus the waiting room ([`Slots::admit`]).
+    places: Arc<Semaphore>,
 }
 
 /// No slot free and the wait queue full.
@@ -116,7 +121,16 @@ impl Slots {
             max_waiting,
             waiting: AtomicUsize::new(0),
             total,
+            places: Arc::new(Semaphore::new(total.saturating_add(max_waiting))),
         }
+    }
+
+    /// A place for a light-curve request, taken before its body is read and held until
+    /// it is answered; [`Busy`] when as many are admitted as there are slots and waiting
+    /// places. Under overload the turned-away request then costs neither reading nor
+    /// parsing its body, so the requests that do run keep the cores.
+    pub fn admit(&self) -> Result<OwnedSemaphorePermit, Busy> {
+        self.places.clone().try_acquire_owned().map_err(|_| Busy)
     }
 
     /// A slot for a synchronous request: at once if one is free, after a wait if fewer
@@ -206,24 +220,63 @@ pub async fn admit(
         .get(axum::http::header::CONTENT_LENGTH)
         .and_then(|v| v.to_str().ok())
         .and_then(|v| v.trim().parse::<usize>().ok());
-    // Over the body limit: the body-limit layer answers 413 without reading it
+    // Declared over the body limit: 413 at once. (The body-limit layer would answer only
+    // after reading up to the limit, and wait as long for a body that is never sent.)
     let bytes = match declared {
-        Some(n) if n > budget.max_body => return next.run(req).await,
+        Some(n) if n > budget.max_body => {
+            let mut r = super::errors::ApiError::new(
+                axum::http::StatusCode::PAYLOAD_TOO_LARGE,
+                format!(
+                    "request body too large: {n} bytes declared, at most {}",
+                    budget.max_body
+                ),
+            )
+            .with_field("body")
+            .into_response();
+            // the body is left unread: the connection cannot carry another request
+            r.headers_mut().insert(
+                axum::http::header::CONNECTION,
+                axum::http::HeaderValue::from_static("close"),
+            );
+            return r;
+        }
         Some(n) => n,
         None => budget.max_body,
     };
     let kib = bytes.div_ceil(1024).max(1).min(u32::MAX as usize) as u32;
     match budget.kib.clone().try_acquire_many_owned(kib) {
         Ok(_permit) => next.run(req).await,
-        Err(_) => super::errors::ApiError {
-            retry_after_s: Some(1),
-            ..super::errors::ApiError::new(
-                axum::http::StatusCode::SERVICE_UNAVAILABLE,
-                format!(
-                    "too many request bytes in flight (this body: {bytes} bytes); retry shortly"
-                ),
-            )
+        Err(_) => {
+            refused(super::errors::ApiError {
+                retry_after_s: Some(1),
+                ..super::errors::ApiError::new(
+                    axum::http::StatusCode::SERVICE_UNAVAILABLE,
+                    format!(
+                        "too many request bytes in flight (this body: {bytes} bytes); retry \
+                         shortly"
+                    ),
+                )
+            })
+            .await
         }
-        .into_response(),
     }
+}
+
+/// How long a request turned away before its body is read waits for its `503`. A client
+/// that retries at once (ignoring `Retry-After`) would otherwise spin: each refusal is
+/// cheap, but thousands a second take the cores from the requests that run. Waiting
+/// costs a timer and the open socket, nothing else.
+pub const REFUSAL_PAUSE: Duration = Duration::from_millis(200);
+
+/// The answer to a request turned away before its body was read, after
+/// [`REFUSAL_PAUSE`]; it closes the connection, which the unread body leaves unusable.
+pub async fn refused(e: super::errors::ApiError) -> axum::response::Response {
+    use axum::response::IntoResponse;
+    tokio::time::sleep(REFUSAL_PAUSE).await;
+    let mut r = e.into_response();
+    r.headers_mut().insert(
+        axum::http::header::CONNECTION,
+        axum::http::HeaderValue::from_static("close"),
+    );
+    r
 }

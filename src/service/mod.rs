@@ -1,7 +1,7 @@
 //! The HTTP service: light curves over REST, batch jobs that survive restarts, OpenAPI.
 //!
 //! ```text
-//! request id ─▶ metrics ─▶ JSON errors ─▶ catch panic ─▶ timeout ─▶ auth ─▶ admission (body bytes) ─▶ body limit ─▶ routes
+//! (connection: head size ─▶ 431) request id ─▶ URI length ─▶ metrics ─▶ JSON errors ─▶ catch panic ─▶ timeout ─▶ auth ─▶ admission (body bytes) ─▶ body limit ─▶ routes
 //!                                                  ├─ /v1/lightcurves: validate → slot → engine (light-curve pool)
 //!                                                  ├─ /v1/jobs…: jobs (durable queue, redb store, job pool)
 //!                                                  └─ /v1/scenes, /healthz, /readyz, /metrics, /docs
@@ -130,6 +130,24 @@ async fn auth(State(token): State<Option<Arc<str>>>, req: Request, next: Next) -
     }
 }
 
+/// Longest request target (path and query) taken, bytes; a longer one is a `414` naming
+/// `uri`. No route needs more than a few hundred; hyper's own bound is 64 KiB.
+pub const MAX_URI_BYTES: usize = 8 << 10;
+
+/// Answers `414` to a request whose target is over [`MAX_URI_BYTES`].
+async fn limit_uri(req: Request, next: Next) -> Response {
+    let n = req.uri().path_and_query().map_or(0, |p| p.as_str().len());
+    if n > MAX_URI_BYTES {
+        return ApiError::new(
+            StatusCode::URI_TOO_LONG,
+            format!("the request target is {n} bytes, over the {MAX_URI_BYTES}-byte limit"),
+        )
+        .with_field("uri")
+        .into_response();
+    }
+    next.run(req).await
+}
+
 /// Equality that takes the same time wherever the first difference is.
 fn constant_time_eq(a: &[u8], b: &[u8]) -> bool {
     a.len() == b.len() && a.iter().zip(b).fold(0u8, |acc, (x, y)| acc | (x ^ y)) == 0
@@ -190,6 +208,7 @@ pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
         .layer(CatchPanicLayer::custom(request_id::panicked))
         .layer(from_fn(errors::json_errors))
         .layer(from_fn_with_state(metrics, metrics::track))
+        .layer(from_fn(limit_uri))
         .layer(from_fn(request_id::tag));
     Ok((router, state))
 }

@@ -18,7 +18,7 @@ use utoipa::{Modify, OpenApi};
     ),
     tags(
         (name = "light curves", description = "Synchronous light-curve computation"),
-        (name = "fits", description = "Material parameters fitted to measured BRDF samples"),
+        (name = "fits", description = "Material parameters fitted to measured BRDF samples; a request's parameters fitted to an observed light curve (a job)"),
         (name = "jobs", description = "Batch jobs, stored durably, that survive restarts"),
         (name = "scenes", description = "Built-in objects and example requests"),
         (name = "operations", description = "Health, readiness and metrics"),

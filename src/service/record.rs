@@ -44,6 +44,31 @@ impl JobState {
     }
 }
 
+/// What a job computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum JobKind {
+    /// A light curve (`POST /v1/jobs`); records written before fit jobs existed are these.
+    #[default]
+    Lightcurve,
+    /// A light-curve fit (`POST /v1/fits/lightcurve`).
+    FitLightcurve,
+}
+
+impl JobKind {
+    pub fn is_lightcurve(&self) -> bool {
+        *self == JobKind::Lightcurve
+    }
+}
+
+/// A fit job's light curves: evaluated (as of the record's last write) and the most it
+/// may evaluate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Evaluations {
+    pub done: usize,
+    pub max: usize,
+}
+
 /// A job as stored on disk (timestamps in Unix milliseconds).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct JobRecord {
@@ -61,4 +86,11 @@ pub struct JobRecord {
     /// it came with: a retry with the same key finds this job instead of making another.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub idempotency: Option<(String, String)>,
+    /// What the job computes (absent: a light curve, as every record before fit jobs).
+    #[serde(default, skip_serializing_if = "JobKind::is_lightcurve")]
+    pub kind: JobKind,
+    /// A fit's light curves; its `epochs_total` is then the observed epochs times
+    /// `evaluations.max`, the most it may compute.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub evaluations: Option<Evaluations>,
 }

@@ -55,10 +55,11 @@ pub fn http(
     let _ = s.write_all(body);
     let mut raw = Vec::new();
     let _ = s.read_to_end(&mut raw);
-    parse(&raw)
+    reply_of(&raw)
 }
 
-fn parse(raw: &[u8]) -> Reply {
+/// The answer in `raw`, the bytes a server sent (a chunked body is joined).
+pub fn reply_of(raw: &[u8]) -> Reply {
     let end = raw
         .windows(4)
         .position(|w| w == b"\r\n\r\n")
@@ -213,4 +214,70 @@ pub fn wait_final(
         }
         std::thread::sleep(Duration::from_millis(50));
     }
+}
+
+/// A light-curve fit's inputs made from a known truth: `scenes/<name>.json`, every
+/// `step`-th epoch, with material `material`'s albedo at `truth` is simulated here by the
+/// library (not by the fit), its magnitudes noised by N(0, 0.02 mag) from a seeded
+/// generator; the request handed to the fit has that albedo at `start` instead. Returns
+/// the request (JSON) and the observations.
+pub fn fit_inputs(
+    name: &str,
+    step: usize,
+    material: usize,
+    truth: f64,
+    start: f64,
+    seed: u64,
+) -> (serde_json::Value, Vec<glint::fit::lightcurve::Observation>) {
+    let text =
+        std::fs::read_to_string(format!("{}/scenes/{name}.json", env!("CARGO_MANIFEST_DIR")))
+            .unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let epochs: Vec<serde_json::Value> = v["epochs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .step_by(step)
+        .cloned()
+        .collect();
+    v["epochs"] = serde_json::Value::Array(epochs);
+    v["object"]["materials"][material]["albedo"] = serde_json::json!(truth);
+    let curve = direct(&v.to_string());
+    // splitmix64 → uniform, Box–Muller → N(0, 1)
+    let mut state = seed;
+    let mut uniform = move || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let observed = curve
+        .epochs
+        .iter()
+        .filter_map(|e| {
+            let (u1, u2) = (uniform().max(1e-300), uniform());
+            let normal = (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos();
+            e.magnitude.map(|m| glint::fit::lightcurve::Observation {
+                t: e.t,
+                magnitude: m + 0.02 * normal,
+                sigma: 0.02,
+            })
+        })
+        .collect();
+    v["object"]["materials"][material]["albedo"] = serde_json::json!(start);
+    (v, observed)
+}
+
+/// The library's own fit of a fit body (the truth the service must give back unchanged).
+pub fn direct_fit(body: &serde_json::Value) -> glint::fit::lightcurve::LightcurveFit {
+    use glint::fit::lightcurve::{fit, LightcurveFitRequest, Options};
+    let req: LightcurveFitRequest = serde_json::from_value(body.clone()).unwrap();
+    fit(
+        &req.request,
+        &req.observed,
+        &Options::from_request(&req).unwrap(),
+    )
+    .unwrap()
 }

@@ -25,8 +25,8 @@
 //!   only ([`SunLight::eclipsed`]).
 //!
 //! Where things are: `cubature` (the points of every rule on the unit disk, and their
-//! directions on the sky), `rule` (which rule an epoch gets), `penumbra` (the Earth's disk
-//! and the rule while it hides part of the Sun's), `blob` (one direction of a rule, its
+//! directions on the sky), `rule` (which rule an epoch gets, in penumbra too), `penumbra`
+//! (the Earth's disk and the directions it hides), `blob` (one direction of a rule, its
 //! lobe widened and squeezed); here the constants, [`SunLight`] and the `projected`
 //! functions.
 

@@ -1,9 +1,10 @@
 //! The rule chosen for one epoch: which points of which rule average the lobe over the
-//! disk, given the lobe's width across it and the Earth.
+//! disk, given the lobe's width across it and the Earth (in penumbra, the finer pattern
+//! with the points the Earth hides dropped).
 
-use super::cubature::{disk_directions, hex_points, smooth_rules};
-use super::penumbra::{penumbra_rule, EarthDisk};
-use super::{angle, SMOOTH_RULES};
+use super::cubature::{disk_directions, hex_points, hex_spacing, penumbra_points, smooth_rules};
+use super::penumbra::EarthDisk;
+use super::{angle, PENUMBRA_RINGS, RINGS, SMOOTH_RULES};
 use glam::DVec3;
 
 /// The rule chosen for one epoch: its directions with weights (summing to 1 over the
@@ -48,5 +49,31 @@ pub(super) fn disk_rule(
         dirs: disk_directions(points, l, sun_radius).collect(),
         slope_in: blob.map_or(slope, |b| slope.max(b)),
         blob,
+    })
+}
+
+/// The rule while the Earth hides part of the disk: the finer hexagonal pattern of
+/// [`PENUMBRA_RINGS`] rings whatever the lobe, its hidden points dropped and the others'
+/// weights renormalised to 1; `blob` as [`disk_rule`] takes it.
+/// `None` when the Earth hides every direction.
+pub(super) fn penumbra_rule(
+    slope: f64,
+    l: DVec3,
+    sun_radius: f64,
+    earth: EarthDisk,
+    blob: f64,
+) -> Option<Rule> {
+    let blob = blob * sun_radius * hex_spacing(PENUMBRA_RINGS) / hex_spacing(RINGS);
+    let dirs: Vec<(f64, DVec3)> = disk_directions(penumbra_points(), l, sun_radius)
+        .filter(|&(_, d)| !earth.hides(d))
+        .collect();
+    let total: f64 = dirs.iter().map(|p| p.0).sum();
+    if dirs.is_empty() {
+        return None;
+    }
+    Some(Rule {
+        dirs: dirs.into_iter().map(|(w, d)| (w / total, d)).collect(),
+        slope_in: slope.max(blob),
+        blob: Some(blob),
     })
 }

@@ -1,7 +1,6 @@
-//! The measurement geometry: a sample's angles as directions in the face frame, a BRDF
-//! evaluated there, and the paper's Fig. 2 layout of angles.
+//! The measurement geometry: angles as directions in the face frame, a BRDF evaluated
+//! there, and the paper's Fig. 2 layout of angles.
 
-use super::samples::Sample;
 use crate::brdf::{Brdf, Frame};
 use glam::DVec3;
 
@@ -24,13 +23,8 @@ pub fn directions(theta_i_deg: f64, theta_r_deg: f64, phi_deg: f64) -> (DVec3, D
     (l, v)
 }
 
-/// The BRDF f (sr⁻¹) of `brdf` at a sample's angles: the model's f·cosθi·cosθr over the
+/// The BRDF f (sr⁻¹) of `brdf` at angles in degrees: the model's f·cosθi·cosθr over the
 /// two cosines (both positive: the angles are below 90°).
-pub fn evaluate(brdf: &Brdf, s: &Sample) -> f64 {
-    evaluate_at(brdf, s.theta_i_deg, s.theta_r_deg, s.phi_deg)
-}
-
-/// [`evaluate`] at angles in degrees.
 pub fn evaluate_at(brdf: &Brdf, theta_i_deg: f64, theta_r_deg: f64, phi_deg: f64) -> f64 {
     let (l, v) = directions(theta_i_deg, theta_r_deg, phi_deg);
     let (ci, cr) = (l.z, v.z);

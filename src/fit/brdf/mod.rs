@@ -13,9 +13,9 @@
 //! is what a goniometer's is. In `linear` space r = f_model − f_meas (sr⁻¹). Either is
 //! multiplied by √weight.
 //!
-//! Where things are: `samples` (a measurement, its checks and CSV, synthetic samples),
-//! `geometry` (a sample's angles as directions, a BRDF evaluated there, the paper's layout
-//! of angles), `model` (the models' parameters, bounds and starts), `request` (the
+//! Where things are: `samples` (a measurement, its checks and CSV, a BRDF evaluated at
+//! it, synthetic samples), `geometry` (angles as directions, a BRDF evaluated there, the
+//! paper's layout of angles), `model` (the models' parameters, bounds and starts), `request` (the
 //! options of a fit), `fitting` (the fit), `report` (its result and plot data).
 
 mod fitting;
@@ -26,8 +26,8 @@ mod request;
 mod samples;
 
 pub use fitting::fit;
-pub use geometry::{directions, evaluate, evaluate_at, paper_geometry};
+pub use geometry::{directions, evaluate_at, paper_geometry};
 pub use model::{Model, ParamSpec};
 pub use report::{plot_data, BrdfFit};
 pub use request::{BrdfFitRequest, Options, Space};
-pub use samples::{parse_csv, synthetic, to_csv, validate_samples, Sample};
+pub use samples::{evaluate, parse_csv, synthetic, to_csv, validate_samples, Sample};

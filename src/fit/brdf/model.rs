@@ -1,8 +1,8 @@
 //! The models that can be fitted: their parameters with the bounds a request's validation
 //! takes, the BRDF each set of values builds, and the starting points of a fit.
 
-use super::geometry::evaluate;
-use super::samples::Sample;
+use super::samples::{evaluate, Sample};
+use crate::brdf::albedo::normalised_seed;
 use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet};
 use crate::fit::params::{Bound, Named};
 
@@ -18,7 +18,12 @@ pub struct ParamSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Model {
     Lambert,
+    /// The paper's Eqs. 6–8 as it fitted them (`normalised: false`).
     SeedMicrofacet,
+    /// `seed-microfacet` with `"normalised": true`: km is the lobe's albedo at normal
+    /// incidence ([`crate::brdf::albedo::normalised_seed`]), so kd + km is the material's,
+    /// and the fit keeps kd + km ≤ 1.
+    SeedNormalised,
     RoughConductor,
     AshikhminShirley,
 }
@@ -38,6 +43,30 @@ const SEED: &[ParamSpec] = &[
     ParamSpec {
         name: "km",
         bound: Bound::new(0.0, 1e3),
+    },
+    ParamSpec {
+        name: "slope_rms",
+        bound: Bound::new(1e-6, 10.0),
+    },
+    ParamSpec {
+        name: "n",
+        bound: Bound::new(1e-6, INDEX_MAX),
+    },
+    ParamSpec {
+        name: "k",
+        bound: Bound::new(0.0, INDEX_MAX),
+    },
+];
+/// The normalised form: km is an albedo, within [0, 1] as the request's validation takes
+/// it (and kd + km ≤ 1, which the fit keeps by solving for their sum).
+const SEED_NORMALISED: &[ParamSpec] = &[
+    ParamSpec {
+        name: "kd",
+        bound: Bound::new(0.0, 1.0),
+    },
+    ParamSpec {
+        name: "km",
+        bound: Bound::new(0.0, 1.0),
     },
     ParamSpec {
         name: "slope_rms",
@@ -101,10 +130,11 @@ impl Model {
         }
     }
 
+    /// The model's name in a request (`seed-microfacet` for both seed forms).
     pub fn name(self) -> &'static str {
         match self {
             Model::Lambert => "lambert",
-            Model::SeedMicrofacet => "seed-microfacet",
+            Model::SeedMicrofacet | Model::SeedNormalised => "seed-microfacet",
             Model::RoughConductor => "rough-conductor",
             Model::AshikhminShirley => "ashikhmin-shirley",
         }
@@ -115,19 +145,48 @@ impl Model {
         match self {
             Model::Lambert => LAMBERT,
             Model::SeedMicrofacet => SEED,
+            Model::SeedNormalised => SEED_NORMALISED,
             Model::RoughConductor => ROUGH,
             Model::AshikhminShirley => ASHIKHMIN,
         }
     }
 
+    /// Whether the model is the normalised seed form (a request's `"normalised": true`).
+    pub fn is_normalised(self) -> bool {
+        self == Model::SeedNormalised
+    }
+
+    /// The model in its normalised form when `normalised`: `seed-microfacet` only; `None`
+    /// for another model.
+    pub fn with_normalised(self, normalised: bool) -> Option<Model> {
+        match (self, normalised) {
+            (m, false) => Some(m),
+            (Model::SeedMicrofacet | Model::SeedNormalised, true) => Some(Model::SeedNormalised),
+            _ => None,
+        }
+    }
+
     /// The BRDF of parameters `p` (in [`Model::params`] order): as a request's material
     /// of this model with these values builds it (seed-microfacet in the paper's form,
-    /// `normalised: false`; rough-conductor with separable shadowing).
+    /// `normalised: false`, or normalised; rough-conductor with separable shadowing).
+    ///
+    /// Panics for normalised seed parameters whose lobe reflects nothing (n ≈ 1, k ≈ 0),
+    /// which [`Model::try_build`] answers with `None`.
     pub fn build(self, p: &[f64]) -> Brdf {
-        match self {
+        self.try_build(p)
+            .expect("a normalised seed lobe that reflects something")
+    }
+
+    /// [`Model::build`], `None` for normalised seed parameters whose lobe reflects
+    /// (almost) nothing, so km cannot be scaled to an albedo.
+    pub fn try_build(self, p: &[f64]) -> Option<Brdf> {
+        Some(match self {
             Model::Lambert => Brdf::Lambert(Lambert { albedo: p[0] }),
             Model::SeedMicrofacet => {
                 Brdf::SeedMicrofacet(SeedMicrofacet::new(p[0], p[1], p[2], p[3], p[4]))
+            }
+            Model::SeedNormalised => {
+                Brdf::SeedMicrofacet(normalised_seed(p[0], p[1], p[2], p[3], p[4]).ok()?)
             }
             Model::RoughConductor => {
                 Brdf::RoughConductor(RoughConductor::new(p[0], p[1], p[2], p[3]))
@@ -135,7 +194,7 @@ impl Model {
             Model::AshikhminShirley => {
                 Brdf::AshikhminShirley(AshikhminShirley::new(p[0], p[1], p[2], p[2]))
             }
-        }
+        })
     }
 
     /// Parameters by request name (Ashikhmin–Shirley's exponent as both `nu` and `nv`).
@@ -163,7 +222,7 @@ impl Model {
         let fix = |i: usize, v: f64| fixed[i].unwrap_or(v);
         match self {
             Model::Lambert => vec![vec![fix(0, diffuse.min(0.95))]],
-            Model::SeedMicrofacet => {
+            Model::SeedMicrofacet | Model::SeedNormalised => {
                 let kd = fix(0, diffuse);
                 let mut out = Vec::new();
                 for (n, k) in [(0.2, 3.0), (1.5, 0.0)] {
@@ -172,7 +231,9 @@ impl Model {
                         let slope = fix(2, slope);
                         // k^M from the samples the unit lobe lights: the median of
                         // (f − kd/π) / f_lobe over those within a decade of its peak
-                        let unit = Model::SeedMicrofacet.build(&[0.0, 1.0, slope, n, k]);
+                        let Some(unit) = self.try_build(&[0.0, 1.0, slope, n, k]) else {
+                            continue;
+                        };
                         let lobe: Vec<f64> = samples.iter().map(|s| evaluate(&unit, s)).collect();
                         let peak = lobe.iter().copied().fold(0.0, f64::max);
                         let mut ratios: Vec<f64> = samples
@@ -183,7 +244,12 @@ impl Model {
                             .collect();
                         ratios.sort_by(f64::total_cmp);
                         let km = ratios.get(ratios.len() / 2).copied().unwrap_or(0.1);
-                        let km = fix(1, km.clamp(1e-4, 900.0));
+                        let km = if self.is_normalised() {
+                            // an albedo: kd + km at most 0.98, a start inside the bound
+                            fix(1, km.clamp(1e-4, (0.98 - kd).max(1e-4)))
+                        } else {
+                            fix(1, km.clamp(1e-4, 900.0))
+                        };
                         out.push(vec![kd, km, slope, n, k]);
                         if fixed[2].is_some() {
                             break;

@@ -1,10 +1,11 @@
 //! The result of a BRDF fit: the report assembled from the solver's best start, its
 //! warnings, and the data of the Fig. 2-style plot.
 
-use super::geometry::{evaluate, evaluate_at};
+use super::geometry::evaluate_at;
 use super::model::{Model, ParamSpec};
 use super::request::{Options, Space};
-use super::samples::Sample;
+use super::samples::{evaluate, Sample};
+use crate::brdf::albedo::Albedo;
 use crate::brdf::Brdf;
 use crate::fit::params::{Named, SolverReport};
 use crate::fit::solve::{Covariance, Solution};
@@ -50,6 +51,10 @@ pub struct BrdfFit {
     pub space: String,
     /// Directional-hemispherical albedo of the fitted material at normal incidence.
     pub albedo: f64,
+    /// Whether the seed model was fitted in its normalised form (km the lobe's albedo at
+    /// normal incidence, kd + km ≤ 1); absent when not.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub normalised: bool,
     /// Correlations of the fitted parameters, in the order of `correlation_order`.
     pub correlation: Vec<Vec<Option<f64>>>,
     pub correlation_order: Vec<String>,
@@ -76,8 +81,10 @@ pub(super) struct Fitted<'a> {
     pub all: &'a [f64],
     /// The BRDF of `all`.
     pub brdf: &'a Brdf,
-    /// The best start, polished.
+    /// The best start, polished, its values those of the free parameters.
     pub best: &'a Solution,
+    /// Free parameters (or `kd + km`) that ended on a bound.
+    pub at_bound: Vec<String>,
     pub cov: Covariance,
     /// Each start's solution, in start order.
     pub solutions: &'a [Solution],
@@ -98,6 +105,7 @@ impl BrdfFit {
             all,
             brdf,
             best,
+            at_bound,
             cov,
             solutions,
             starts,
@@ -115,14 +123,8 @@ impl BrdfFit {
                 uncertainty.insert("nv".into(), s);
             }
         }
-        let at_bound: Vec<String> = free
-            .iter()
-            .zip(&best.p)
-            .filter(|(&i, &p)| specs[i].bound.at_bound(p))
-            .map(|(&i, _)| specs[i].name.to_string())
-            .collect();
         let (rms, rms_log) = misfit(samples, brdf);
-        let albedo = crate::brdf::albedo::directional(brdf, 0.0, 0.0);
+        let albedo = crate::brdf::albedo::albedo(brdf);
         let mut wavelengths: Vec<f64> = samples.iter().filter_map(|s| s.wavelength_um).collect();
         wavelengths.sort_by(f64::total_cmp);
         wavelengths.dedup();
@@ -131,6 +133,9 @@ impl BrdfFit {
         let mut material = serde_json::json!({ "name": "fitted", "model": opts.model.name() });
         for (k, v) in &parameters {
             material[k] = serde_json::json!(v);
+        }
+        if opts.model.is_normalised() {
+            material["normalised"] = serde_json::json!(true);
         }
         let fixed_named: Named = free_complement(specs, fixed);
         BrdfFit {
@@ -150,7 +155,8 @@ impl BrdfFit {
                 Space::Log => "log".into(),
                 Space::Linear => "linear".into(),
             },
-            albedo,
+            albedo: albedo.normal,
+            normalised: opts.model.is_normalised(),
             correlation: cov.correlation,
             correlation_order: names,
             wavelengths_um: wavelengths,
@@ -171,13 +177,13 @@ impl BrdfFit {
 
     /// The fitted BRDF, rebuilt from `parameters`.
     pub fn brdf(&self) -> Option<Brdf> {
-        let model = Model::parse(&self.model)?;
+        let model = Model::parse(&self.model)?.with_normalised(self.normalised)?;
         let p: Option<Vec<f64>> = model
             .params()
             .iter()
             .map(|s| self.parameters.get(s.name).copied())
             .collect();
-        Some(model.build(&p?))
+        model.try_build(&p?)
     }
 }
 
@@ -186,7 +192,7 @@ impl BrdfFit {
 /// (`sigma` in the order of `names`).
 fn warnings(
     wavelengths: &[f64],
-    albedo: f64,
+    albedo: Albedo,
     at_bound: &[String],
     best: &Solution,
     names: &[String],
@@ -199,10 +205,17 @@ fn warnings(
             wavelengths.len()
         ));
     }
-    if albedo > 1.0 {
+    if albedo.normal > 1.0 {
         warnings.push(format!(
-            "the fitted material reflects {albedo:.2}× the light it receives at normal incidence \
-             (the paper's Eq. 8 is not normalised; its own materials reflect 2.4× and 6.1×)"
+            "the fitted material reflects {:.2}× the light it receives at normal incidence \
+             (the paper's Eq. 8 is not normalised; its own materials reflect 2.4× and 6.1×)",
+            albedo.normal
+        ));
+    } else if albedo.max > 1.0 {
+        warnings.push(format!(
+            "the fitted material reflects {:.2}× the light it receives at {}° incidence \
+             (at normal incidence {:.2}×): its Fresnel term rises towards grazing",
+            albedo.max, albedo.max_at_deg, albedo.normal
         ));
     }
     if !at_bound.is_empty() {

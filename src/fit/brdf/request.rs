@@ -28,6 +28,11 @@ pub struct BrdfFitRequest {
     /// Include the Fig. 2-style plot as SVG text in `plot_svg`. Default false.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub plot: Option<bool>,
+    /// `seed-microfacet` only: fit the normalised form (a request's `"normalised": true`),
+    /// where km is the lobe's albedo at normal incidence and kd + km ≤ 1 is kept. Default
+    /// false (the paper's form).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normalised: Option<bool>,
 }
 
 /// Residual space.
@@ -56,6 +61,17 @@ impl Options {
                 format!("unknown model `{}`; expected {}", req.model, Model::NAMES),
             )
         })?;
+        let model = model
+            .with_normalised(req.normalised.unwrap_or(false))
+            .ok_or_else(|| {
+                ValidationError::new(
+                    "normalised",
+                    format!(
+                        "applies only to model `seed-microfacet` (the request fits `{}`)",
+                        req.model
+                    ),
+                )
+            })?;
         let loss = match req.loss.as_deref() {
             None => Loss::Huber,
             Some(s) => Loss::parse(s).ok_or_else(|| {

@@ -29,6 +29,12 @@ pub struct Sample {
     pub wavelength_um: Option<f64>,
 }
 
+/// The BRDF f (sr⁻¹) of `brdf` at sample `s`'s angles: the model's f·cosθi·cosθr over the
+/// two cosines (both positive: the angles are below 90°).
+pub fn evaluate(brdf: &Brdf, s: &Sample) -> f64 {
+    evaluate_at(brdf, s.theta_i_deg, s.theta_r_deg, s.phi_deg)
+}
+
 /// Checks every sample, naming the first bad field as `samples[i].name`.
 pub fn validate_samples(samples: &[Sample]) -> Result<(), ValidationError> {
     for (i, s) in samples.iter().enumerate() {

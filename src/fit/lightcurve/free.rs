@@ -2,7 +2,6 @@
 //! its bounds and current value, or the yaw), their starts, and the fitted values put back
 //! into the request.
 
-use super::residuals::Problem;
 use super::{Options, YAW};
 use crate::fit::params::{check_in_bound, Bound};
 use crate::scene::request::{MaterialObject, MaterialSpec};
@@ -77,7 +76,7 @@ fn get_field(m: &MaterialObject, field: &str) -> Option<f64> {
     }
 }
 
-pub(super) fn set_field(m: &mut MaterialObject, field: &str, v: f64) {
+fn set_field(m: &mut MaterialObject, field: &str, v: f64) {
     let slot = match field {
         "albedo" => &mut m.albedo,
         "kd" => &mut m.kd,
@@ -281,13 +280,17 @@ fn apply_starts(
     Ok(())
 }
 
-/// The request with fitted values `p` in place: changed materials as full objects, and a
-/// yaw folded into every epoch's attitude (attitude · R_z(ψ)).
-pub(super) fn fitted_request(request: &Request, problem: &Problem, p: &[f64]) -> serde_json::Value {
-    let mut out = request.clone();
-    let mut materials = problem.materials.clone();
+/// Values `p` of the free parameters `targets` put in place: the materials they change,
+/// as full objects (`materials` with the values set), and the yaw (degrees) when it is
+/// free.
+pub(super) fn assign(
+    targets: &[Target],
+    materials: &BTreeMap<usize, MaterialObject>,
+    p: &[f64],
+) -> (BTreeMap<usize, MaterialObject>, Option<f64>) {
+    let mut materials = materials.clone();
     let mut yaw = None;
-    for (t, &v) in problem.targets.iter().zip(p) {
+    for (t, &v) in targets.iter().zip(p) {
         match t {
             Target::Material { index, field } => {
                 set_field(materials.get_mut(index).expect("resolved"), field, v)
@@ -295,6 +298,20 @@ pub(super) fn fitted_request(request: &Request, problem: &Problem, p: &[f64]) ->
             Target::Yaw => yaw = Some(v),
         }
     }
+    (materials, yaw)
+}
+
+/// The request with fitted values `p` of `targets` in place (`materials` as
+/// [`Resolved::materials`]): changed materials as full objects, and a yaw folded into
+/// every epoch's attitude (attitude · R_z(ψ)).
+pub(super) fn fitted_request(
+    request: &Request,
+    materials: &BTreeMap<usize, MaterialObject>,
+    targets: &[Target],
+    p: &[f64],
+) -> serde_json::Value {
+    let mut out = request.clone();
+    let (materials, yaw) = assign(targets, materials, p);
     for (index, m) in materials {
         out.object.materials[index] = MaterialSpec::Full(m);
     }

@@ -1,7 +1,7 @@
 //! The result of a light-curve fit: the report assembled at the optimum, and the data of
 //! the observed-against-fitted plot.
 
-use super::free::fitted_request;
+use super::free::{fitted_request, Target};
 use super::observed::Observation;
 use super::residuals::Problem;
 use super::Options;
@@ -67,13 +67,15 @@ pub(super) struct Fitted<'a> {
     pub observed: &'a [Observation],
     pub opts: &'a Options,
     /// Evaluated last at the optimum.
-    pub problem: &'a Problem,
+    pub problem: &'a Problem<'a>,
     pub bounds: &'a [Bound],
     pub start: &'a [f64],
     pub sol: Solution,
     pub cov: Covariance,
     /// The residuals at the optimum.
     pub residuals: &'a [f64],
+    /// RMS of the residuals each solved start ended with, in the order solved.
+    pub start_rms: Vec<f64>,
     pub started: std::time::Instant,
 }
 
@@ -90,6 +92,7 @@ impl LightcurveFit {
             sol,
             cov,
             residuals: r,
+            start_rms,
             started,
         } = f;
         let dark = problem.dark;
@@ -106,7 +109,11 @@ impl LightcurveFit {
             / n as f64)
             .sqrt();
         let names = opts.free.clone();
-        let parameters: Named = names.iter().cloned().zip(sol.p.iter().copied()).collect();
+        let parameters: Named = names
+            .iter()
+            .zip(problem.targets.iter().zip(&sol.p))
+            .map(|(n, (t, &v))| (n.clone(), reported(t, v)))
+            .collect();
         let uncertainty = names
             .iter()
             .cloned()
@@ -120,7 +127,7 @@ impl LightcurveFit {
             .map(|((n, _), _)| n.clone())
             .collect();
         let warnings = warnings(&sol, &at_bound, &fitted, dark);
-        let request_out = fitted_request(request, problem, &sol.p);
+        let request_out = fitted_request(request, &problem.materials, &problem.targets, &sol.p);
         LightcurveFit {
             parameters,
             uncertainty,
@@ -148,14 +155,30 @@ impl LightcurveFit {
             solver: SolverReport {
                 algorithm: "levenberg-marquardt".into(),
                 loss: opts.loss.name().into(),
-                starts: 1,
-                start_rms: vec![(chi2 / n as f64).sqrt()],
-                evaluations: problem.evaluations.get(),
+                starts: start_rms.len(),
+                start_rms,
+                evaluations: problem.evaluations(),
                 converged: sol.converged,
                 termination: sol.termination,
                 wall_time_s: started.elapsed().as_secs_f64(),
             },
         }
+    }
+}
+
+/// A fitted value as reported: a yaw in (−180°, 180°] (a turn more or less is the same
+/// attitude), anything else as it is.
+fn reported(target: &Target, v: f64) -> f64 {
+    match target {
+        Target::Yaw => {
+            let w = v.rem_euclid(360.0);
+            if w > 180.0 {
+                w - 360.0
+            } else {
+                w
+            }
+        }
+        Target::Material { .. } => v,
     }
 }
 

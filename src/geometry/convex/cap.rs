@@ -42,29 +42,46 @@ impl Cap<'_> {
     /// faces merged within the merge tolerance) are allowed while the bound they put on
     /// any vertex's distance beyond a face's plane stays within `tol`.
     pub(super) fn sides(&self, lid: &Lid, tol: f64) -> Option<Vec<bool>> {
-        let (vertices, n) = (self.vertices, self.vertices.len());
         let triangles: Vec<u32> = self
             .part
             .iter()
             .flat_map(|&f| self.faces.faces[f as usize].triangles.iter().copied())
             .collect();
-        if n + triangles.len() != self.inner.len() + self.open.len() + 1 {
+        if self.vertices.len() + triangles.len() != self.inner.len() + self.open.len() + 1 {
             return None; // not a disk (V − E + F = 1)
         }
+        let local = self.local_ids();
+        self.projects_once_round(lid, &triangles, &local)?;
+        let (ahead, turns) = self.bends_one_way(lid, &local, tol)?;
+        let (_, radius) = crate::geometry::mesh::bounding_sphere(self.vertices);
+        self.face_sides(ahead, 2.0 * radius * turns, radius, &local, tol)
+    }
+
+    /// Per mesh vertex: the index of its welded id among the cap's (`u32::MAX` for
+    /// vertices not in the cap).
+    fn local_ids(&self) -> Vec<u32> {
         let mut local = vec![u32::MAX; self.mesh.vertices.len()];
         for (i, &v) in self.ids.iter().enumerate() {
             local[v as usize] = i as u32;
         }
-        let corners = |t: u32| {
-            self.mesh.triangles[t as usize]
-                .map(|v| local[self.welded[v as usize] as usize] as usize)
-        };
+        local
+    }
+
+    /// Triangle `t`'s corners as indices into the cap's vertices.
+    fn corners(&self, t: u32, local: &[u32]) -> [usize; 3] {
+        self.mesh.triangles[t as usize].map(|v| local[self.welded[v as usize] as usize] as usize)
+    }
+
+    /// That every triangle projects onto the lid's plane with one orientation, and the
+    /// projected angles about each inner vertex add up to one turn (once round, not
+    /// twice); `None` when either fails.
+    fn projects_once_round(&self, lid: &Lid, triangles: &[u32], local: &[u32]) -> Option<()> {
+        let (vertices, n) = (self.vertices, self.vertices.len());
         let flat = |p: glam::DVec3| glam::DVec2::new(p.dot(lid.u), p.dot(lid.w));
-        // one orientation in projection, and the projected angles about each vertex
         let mut sign = 0.0;
         let mut turn = vec![0.0; n];
-        for &t in &triangles {
-            let c = corners(t);
+        for &t in triangles {
+            let c = self.corners(t, local);
             let p = c.map(|i| vertices[i]);
             let area = (p[1] - p[0]).cross(p[2] - p[0]);
             let cos = area.dot(lid.normal) / area.length();
@@ -92,16 +109,24 @@ impl Cap<'_> {
         if (0..n).any(|i| !rim[i] && !once_round(turn[i])) {
             return None;
         }
-        // Every inner edge bends one way. A kink the wrong way (by rounding, on a face
-        // merged from triangles) of normal height h, over a far corner at projected
-        // distance d from the edge, turns the function's slope by h/(cos·d); a straight
-        // path over the projection crosses each edge at most once, so over the cap's width
-        // 2r the kinks misplace a vertex by at most 2r·Σ h/(cos·d) against any triangle's
-        // plane.
+        Some(())
+    }
+
+    /// That every inner edge bends one way (within `tol`'s slack): whether the cap lies
+    /// ahead of its triangles, and Σ h/(cos·d) of the kinks the other way.
+    ///
+    /// A kink the wrong way (by rounding, on a face merged from triangles) of normal
+    /// height h, over a far corner at projected distance d from the edge, turns the
+    /// function's slope by h/(cos·d); a straight path over the projection crosses each
+    /// edge at most once, so over the cap's width 2r the kinks misplace a vertex by at
+    /// most 2r·Σ h/(cos·d) against any triangle's plane.
+    fn bends_one_way(&self, lid: &Lid, local: &[u32], tol: f64) -> Option<(bool, f64)> {
+        let vertices = self.vertices;
+        let flat = |p: glam::DVec3| glam::DVec2::new(p.dot(lid.u), p.dot(lid.w));
         let (mut ahead_sum, mut behind_sum) = (0.0, 0.0);
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for &(s, t) in self.inner {
-            let (a, b) = (corners(s), corners(t));
+            let (a, b) = (self.corners(s, local), self.corners(t, local));
             let far = |x: &[usize; 3], y: &[usize; 3]| {
                 let mut far = x.iter().filter(|v| !y.contains(v));
                 match (far.next(), far.next()) {
@@ -133,21 +158,33 @@ impl Cap<'_> {
             }
         }
         let slack = 1e-4 * tol;
-        let (ahead, turns) = if hi <= slack {
-            (false, behind_sum)
+        if hi <= slack {
+            Some((false, behind_sum))
         } else if lo >= -slack {
-            (true, ahead_sum)
+            Some((true, ahead_sum))
         } else {
-            return None;
-        };
-        let (_, radius) = crate::geometry::mesh::bounding_sphere(vertices);
-        let bound = 2.0 * radius * turns;
-        // A face's plane against its first triangle's: every vertex within `bound` of the
-        // triangle's plane on the hull's side is within this much more of the face's.
+            None
+        }
+    }
+
+    /// Every face's side (`ahead`) once its plane is shown close enough to its first
+    /// triangle's: every vertex within `bound` (m) of a triangle's plane on the hull's side
+    /// is within `bound` + 2·`radius`·tilt + the triangle's own offset of the face's;
+    /// `None` when that passes `tol` (a kinked merged face: left to the tree).
+    fn face_sides(
+        &self,
+        ahead: bool,
+        bound: f64,
+        radius: f64,
+        local: &[u32],
+        tol: f64,
+    ) -> Option<Vec<bool>> {
         let mut sides = Vec::with_capacity(self.part.len());
         for &f in self.part {
             let face = &self.faces.faces[f as usize];
-            let p = corners(face.triangles[0]).map(|i| vertices[i]);
+            let p = self
+                .corners(face.triangles[0], local)
+                .map(|i| self.vertices[i]);
             let area = (p[1] - p[0]).cross(p[2] - p[0]);
             let tilt = (face.normal - area / area.length()).length();
             let off = p
@@ -156,7 +193,7 @@ impl Cap<'_> {
                 .fold(0.0, f64::max);
             let beyond = bound + 2.0 * radius * tilt + off;
             if beyond.is_nan() || beyond > tol {
-                return None; // a kinked merged face: leave it to the tree
+                return None;
             }
             sides.push(ahead);
         }

@@ -6,7 +6,7 @@
 
 use super::cap::Cap;
 use super::lid::{lid_of, Lid};
-use crate::geometry::faces::Faces;
+use crate::geometry::faces::{Faces, WeldedEdge};
 use crate::geometry::mesh::Mesh;
 use crate::geometry::union_find::{find, union};
 use rayon::prelude::*;
@@ -57,128 +57,198 @@ pub(super) fn parts_of(
     tol: f64,
     by_edges: bool,
 ) -> Vec<(ConvexPart, bool)> {
+    // the triangles' edges by their welded ends, sorted so that each edge's uses are side
+    // by side (a sort, not a hash map of lists: no allocation per edge), as merging faces
+    // left them; unmerged faces kept none
+    let (welded, sorted) = faces.welded_edges(mesh);
+    let uses = edge_uses(mesh, faces, &welded, &sorted);
+    let mut parent = joined_by_shared_edges(faces.len(), &uses);
+    let members = members_by_root(&mut parent);
+    let edges = part_edges(&uses, &mut parent);
+    let cx = Context {
+        mesh,
+        faces,
+        welded: &welded,
+    };
+    let mut work = 0usize;
+    let mut parts: Vec<(ConvexPart, bool)> = members
+        .into_iter()
+        .enumerate()
+        .filter(|(root, fs)| fs.len() >= MIN_PART_FACES && !edges.non_manifold[*root])
+        .filter_map(|(root, fs)| {
+            let (open, inner) = (&edges.open[root], &edges.inner[root]);
+            checked_part(&cx, fs, open, inner, tol, by_edges, &mut work)
+        })
+        .collect();
+    parts.sort_by_key(|(p, _)| p.faces[0]);
+    parts
+}
+
+/// One triangle's use of a welded edge: its ends (the lower first), the triangle's face,
+/// whether the triangle runs from the lower end, and the triangle.
+type EdgeUse = ((u32, u32), u32, bool, u32);
+
+/// Each use of each welded edge (`sorted`, as [`Faces::welded_edges`] gives them, each
+/// edge's uses side by side) with its face and its direction: a shared edge joins two
+/// faces.
+fn edge_uses(mesh: &Mesh, faces: &Faces, welded: &[u32], sorted: &[WeldedEdge]) -> Vec<EdgeUse> {
     let mut face_of = vec![0u32; mesh.triangles.len()];
     for (i, f) in faces.faces.iter().enumerate() {
         for &t in &f.triangles {
             face_of[t as usize] = i as u32;
         }
     }
-    // the triangles' edges by their welded ends, sorted so that each edge's uses are side
-    // by side (a sort, not a hash map of lists: no allocation per edge), as merging faces
-    // left them; unmerged faces kept none
-    let (welded, sorted) = faces.welded_edges(mesh);
-    // each use with its face and whether its triangle runs from the lower end: a shared
-    // edge joins two faces
-    let edges: Vec<((u32, u32), u32, bool, u32)> = sorted
+    sorted
         .iter()
         .map(|&(a, b, t)| {
             let tri = mesh.triangles[t as usize].map(|v| welded[v as usize]);
             let forward = a < b && (0..3).any(|k| tri[k] == a && tri[(k + 1) % 3] == b);
             ((a, b), face_of[t as usize], forward, t)
         })
-        .collect();
-    let uses = || edges.chunk_by(|x, y| x.0 == y.0);
-    let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
-    for adj in uses() {
+        .collect()
+}
+
+/// The faces joined through the edges they share: a union–find over `faces` faces.
+fn joined_by_shared_edges(faces: usize, uses: &[EdgeUse]) -> Vec<u32> {
+    let mut parent: Vec<u32> = (0..faces as u32).collect();
+    for adj in uses.chunk_by(|x, y| x.0 == y.0) {
         for w in adj.windows(2) {
             union(&mut parent, w[0].1, w[1].1);
         }
     }
-    // each part under its least face, which is its root
-    let mut members: Vec<Vec<u32>> = vec![Vec::new(); faces.len()];
-    for f in 0..faces.len() as u32 {
-        members[find(&mut parent, f) as usize].push(f);
+    parent
+}
+
+/// Each part's faces under its least face, which is its root (empty for other faces).
+fn members_by_root(parent: &mut [u32]) -> Vec<Vec<u32>> {
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); parent.len()];
+    for f in 0..parent.len() as u32 {
+        members[find(parent, f) as usize].push(f);
     }
-    // open edges per part: an edge of a part that no other triangle of it uses the
-    // other way round (edges inside a merged face cancel like any other), in the
-    // direction its triangle runs; sorted, so the lid's corners start from the first
-    let mut open: Vec<Vec<(u32, u32)>> = vec![Vec::new(); faces.len()];
-    // and its inner edges: the two triangles that share each (for `Cap::sides`)
-    let mut inner: Vec<Vec<(u32, u32)>> = vec![Vec::new(); faces.len()];
-    let mut non_manifold = vec![false; faces.len()];
-    for adj in uses() {
+    members
+}
+
+/// A part's edges, by the part's root face.
+struct PartEdges {
+    /// Open edges: an edge of a part that no other triangle of it uses the other way
+    /// round (edges inside a merged face cancel like any other), in the direction its
+    /// triangle runs; sorted, so the lid's corners start from the first.
+    open: Vec<Vec<(u32, u32)>>,
+    /// Inner edges: the two triangles that share each (for `Cap::sides`).
+    inner: Vec<Vec<(u32, u32)>>,
+    /// An edge used twice one way, or by three faces.
+    non_manifold: Vec<bool>,
+}
+
+/// Every part's open and inner edges, and whether it is non-manifold.
+fn part_edges(uses: &[EdgeUse], parent: &mut [u32]) -> PartEdges {
+    let n = parent.len();
+    let mut edges = PartEdges {
+        open: vec![Vec::new(); n],
+        inner: vec![Vec::new(); n],
+        non_manifold: vec![false; n],
+    };
+    for adj in uses.chunk_by(|x, y| x.0 == y.0) {
         let ((a, b), face, _, _) = adj[0];
-        let part = find(&mut parent, face) as usize;
+        let part = find(parent, face) as usize;
         match adj {
-            [(_, _, forward, _)] => open[part].push(if *forward { (a, b) } else { (b, a) }),
-            [(_, _, x, s), (_, _, y, t)] if x != y => inner[part].push((*s, *t)),
-            _ => non_manifold[part] = true, // used twice one way, or by three faces
+            [(_, _, forward, _)] => edges.open[part].push(if *forward { (a, b) } else { (b, a) }),
+            [(_, _, x, s), (_, _, y, t)] if x != y => edges.inner[part].push((*s, *t)),
+            _ => edges.non_manifold[part] = true,
         }
     }
-    for edges in &mut open {
-        edges.sort_unstable();
+    for open in &mut edges.open {
+        open.sort_unstable();
     }
-    let mut work = 0usize;
-    let mut parts: Vec<(ConvexPart, bool)> = members
-        .into_iter()
-        .enumerate()
-        .filter(|(root, fs)| fs.len() >= MIN_PART_FACES && !non_manifold[*root])
-        .filter_map(|(root, fs)| {
-            let mut ids: Vec<u32> = fs
-                .iter()
-                .flat_map(|&f| faces.faces[f as usize].triangles.iter())
-                .flat_map(|&t| mesh.triangles[t as usize].map(|v| welded[v as usize]))
-                .collect();
-            ids.sort_unstable();
-            ids.dedup();
-            let vertices: Vec<glam::DVec3> =
-                ids.iter().map(|&v| mesh.vertices[v as usize]).collect();
-            work = work.saturating_add(fs.len().saturating_mul(vertices.len()));
-            if work > PART_WORK_LIMIT {
-                return None;
-            }
-            let mean = vertices.iter().sum::<glam::DVec3>() / vertices.len() as f64;
-            let mut lid = None;
-            if let Some(open) = Some(&open[root]).filter(|o| !o.is_empty()) {
-                // the open side must be flat: Newell's normal of its edges, then distances
-                let p = mesh.vertices[open[0].0 as usize];
-                let n = open.iter().fold(glam::DVec3::ZERO, |acc, &(a, b)| {
-                    let (a, b) = (mesh.vertices[a as usize] - p, mesh.vertices[b as usize] - p);
-                    acc + a.cross(b)
-                });
-                let flat = n.length() > 0.0 && {
-                    let n = n.normalize();
-                    open.iter()
-                        .flat_map(|&(a, b)| [a, b])
-                        .all(|v| n.dot(mesh.vertices[v as usize] - p).abs() <= tol)
-                };
-                if !flat {
-                    return None;
-                }
-                lid = lid_of(open, mesh, mean - p, n.normalize(), tol);
-            }
-            // Per face: which side the part lies on, and that no vertex lies beyond its
-            // plane on the other: from a cap's edges when it has a lid, else vertex by
-            // vertex.
-            let cap = lid.as_ref().filter(|_| by_edges).and_then(|lid| {
-                let cap = Cap {
-                    mesh,
-                    welded: &welded,
-                    faces,
-                    part: &fs,
-                    ids: &ids,
-                    vertices: &vertices,
-                    open: &open[root],
-                    inner: &inner[root],
-                };
-                cap.sides(lid, tol)
-            });
-            let proven = cap.is_some();
-            let hull_ahead = match cap {
-                Some(sides) => sides,
-                None => tree_sides(faces, &fs, &vertices, mean, tol)?,
-            };
-            let part = ConvexPart {
-                vertices,
-                faces: fs,
-                hull_ahead,
-                lid,
-            };
-            Some((part, proven))
-        })
+    edges
+}
+
+/// What every part is checked against: the mesh, its faces, each vertex's welded id.
+struct Context<'a> {
+    mesh: &'a Mesh,
+    faces: &'a Faces,
+    welded: &'a [u32],
+}
+
+/// The part of faces `fs` (with its `open` and `inner` edges) as a convex part, and whether
+/// its edges proved it; `None` when it is none, or when the work spent on parts so far
+/// (`work`, faces × vertices) passes [`PART_WORK_LIMIT`].
+fn checked_part(
+    cx: &Context,
+    fs: Vec<u32>,
+    open: &[(u32, u32)],
+    inner: &[(u32, u32)],
+    tol: f64,
+    by_edges: bool,
+    work: &mut usize,
+) -> Option<(ConvexPart, bool)> {
+    let (mesh, faces, welded) = (cx.mesh, cx.faces, cx.welded);
+    let mut ids: Vec<u32> = fs
+        .iter()
+        .flat_map(|&f| faces.faces[f as usize].triangles.iter())
+        .flat_map(|&t| mesh.triangles[t as usize].map(|v| welded[v as usize]))
         .collect();
-    parts.sort_by_key(|(p, _)| p.faces[0]);
-    parts
+    ids.sort_unstable();
+    ids.dedup();
+    let vertices: Vec<glam::DVec3> = ids.iter().map(|&v| mesh.vertices[v as usize]).collect();
+    *work = work.saturating_add(fs.len().saturating_mul(vertices.len()));
+    if *work > PART_WORK_LIMIT {
+        return None;
+    }
+    let mean = vertices.iter().sum::<glam::DVec3>() / vertices.len() as f64;
+    let lid = open_side(mesh, open, mean, tol)?;
+    // Per face: which side the part lies on, and that no vertex lies beyond its plane on
+    // the other: from a cap's edges when it has a lid, else vertex by vertex.
+    let cap = lid.as_ref().filter(|_| by_edges).and_then(|lid| {
+        let cap = Cap {
+            mesh,
+            welded,
+            faces,
+            part: &fs,
+            ids: &ids,
+            vertices: &vertices,
+            open,
+            inner,
+        };
+        cap.sides(lid, tol)
+    });
+    let proven = cap.is_some();
+    let hull_ahead = match cap {
+        Some(sides) => sides,
+        None => tree_sides(faces, &fs, &vertices, mean, tol)?,
+    };
+    let part = ConvexPart {
+        vertices,
+        faces: fs,
+        hull_ahead,
+        lid,
+    };
+    Some((part, proven))
+}
+
+/// The lid of a part with open edges `open` and vertices' `mean` (m): `Some(None)` for a
+/// closed part or an open side that is no convex polygon, `None` when the open side is
+/// not flat (within `tol`, m), which makes the part no convex part.
+fn open_side(mesh: &Mesh, open: &[(u32, u32)], mean: glam::DVec3, tol: f64) -> Option<Option<Lid>> {
+    if open.is_empty() {
+        return Some(None);
+    }
+    // the open side must be flat: Newell's normal of its edges, then distances
+    let p = mesh.vertices[open[0].0 as usize];
+    let n = open.iter().fold(glam::DVec3::ZERO, |acc, &(a, b)| {
+        let (a, b) = (mesh.vertices[a as usize] - p, mesh.vertices[b as usize] - p);
+        acc + a.cross(b)
+    });
+    let flat = n.length() > 0.0 && {
+        let n = n.normalize();
+        open.iter()
+            .flat_map(|&(a, b)| [a, b])
+            .all(|v| n.dot(mesh.vertices[v as usize] - p).abs() <= tol)
+    };
+    if !flat {
+        return None;
+    }
+    Some(lid_of(open, mesh, mean - p, n.normalize(), tol))
 }
 
 /// Per face of a part (`part`, with distinct `vertices` and their `mean`, m): whether the

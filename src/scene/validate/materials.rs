@@ -149,24 +149,19 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
             let d = in_range(&f("slope_rms"), req("slope_rms", m.slope_rms)?, 1e-6, 10.0)?;
             let n = positive(&f("n"), req("n", m.n)?)?;
             let k = in_range(&f("k"), m.k.unwrap_or(0.0), 0.0, 1e3)?;
-            let km = if normalised && km > 0.0 {
-                // the lobe's albedo at normal incidence with k^M = 1
-                let unit = Brdf::SeedMicrofacet(SeedMicrofacet::new(0.0, 1.0, d, n, k));
-                let a = crate::brdf::albedo::directional(&unit, 0.0, 0.0);
-                if a <= 1e-9 {
-                    return err(
-                        f("n"),
-                        format!(
-                            "with n = {n}, k = {k} the surface reflects (almost) nothing \
-                             (lobe albedo {a:.1e}): km cannot be scaled to an albedo"
-                        ),
-                    );
-                }
-                km / a
-            } else {
-                km
-            };
-            Ok(Brdf::SeedMicrofacet(SeedMicrofacet::new(kd, km, d, n, k)))
+            if !normalised {
+                return Ok(Brdf::SeedMicrofacet(SeedMicrofacet::new(kd, km, d, n, k)));
+            }
+            match crate::brdf::albedo::normalised_seed(kd, km, d, n, k) {
+                Ok(seed) => Ok(Brdf::SeedMicrofacet(seed)),
+                Err(a) => err(
+                    f("n"),
+                    format!(
+                        "with n = {n}, k = {k} the surface reflects (almost) nothing \
+                         (lobe albedo {a:.1e}): km cannot be scaled to an albedo"
+                    ),
+                ),
+            }
         }
         "rough-conductor" => {
             only(field, m, &["alpha", "n", "k", "kd", "shadowing"])?;

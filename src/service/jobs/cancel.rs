@@ -12,7 +12,7 @@ use std::time::Duration;
 #[derive(Debug)]
 pub enum Deleted {
     /// The job was queued or running and is now cancelled.
-    Cancelled(JobStatus),
+    Cancelled(Box<JobStatus>),
     /// The job had finished; it and its result were removed.
     Removed,
 }
@@ -32,7 +32,7 @@ impl Jobs {
         let was_cancelled = cancelled.is_some();
         run_blocking("removing the job", move || {
             if was_cancelled {
-                me.persist(&key, None)
+                me.persist(&key)
             } else {
                 me.remove(&key)
             }
@@ -40,7 +40,7 @@ impl Jobs {
         .await?
         .map_err(ApiError::from)?;
         Ok(match cancelled {
-            Some(s) => Deleted::Cancelled(s),
+            Some(s) => Deleted::Cancelled(Box::new(s)),
             None => Deleted::Removed,
         })
     }
@@ -75,7 +75,8 @@ fn cancel(e: &mut Entry, now: i64) -> bool {
         JobState::Queued | JobState::Running => {
             e.progress.cancel();
             if e.rec.state == JobState::Running {
-                e.rec.epochs_done = e.progress.done();
+                e.rec.epochs_done = e.epochs_so_far();
+                e.rec.evaluations = e.evaluations_so_far();
             }
             e.rec.state = JobState::Cancelled;
             e.rec.finished_ms = Some(now);

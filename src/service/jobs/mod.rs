@@ -18,16 +18,18 @@
 //! | what a client sees: status, lists, counts, results | `status.rs` |
 //! | cancellation (`DELETE`) and shutdown | `cancel.rs` |
 //! | expiry of finished jobs | `expiry.rs` |
+//! | a light-curve fit as a job: its body checked, its run, its progress | `fit.rs` |
 
 mod cancel;
 mod expiry;
+mod fit;
 mod status;
 mod submit;
 #[cfg(test)]
 mod test_fixtures;
 mod worker;
 
-pub use super::record::{JobRecord, JobState};
+pub use super::record::{Evaluations, JobKind, JobRecord, JobState};
 pub use cancel::Deleted;
 pub use status::{no_such_job, rfc3339, JobStatus};
 
@@ -41,10 +43,23 @@ use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 use tokio::sync::{mpsc, Notify, Semaphore};
 
-/// One job in the live table: its record and the progress of its current run.
+/// One job in the live table: its record and the progress of its current run (a fit's
+/// also counts its light curves).
 struct Entry {
     rec: JobRecord,
     progress: Arc<Progress>,
+    evaluations: Arc<AtomicUsize>,
+}
+
+impl Entry {
+    /// A new entry for `rec`, its run not started.
+    fn new(rec: JobRecord) -> Entry {
+        Entry {
+            rec,
+            progress: Arc::new(Progress::new()),
+            evaluations: Default::default(),
+        }
+    }
 }
 
 /// The job manager (one per service).
@@ -95,13 +110,7 @@ impl Jobs {
             if requeue_interrupted(&mut rec) {
                 requeue.push(rec.id.clone());
             }
-            table.insert(
-                rec.id.clone(),
-                Entry {
-                    rec,
-                    progress: Arc::new(Progress::new()),
-                },
-            );
+            table.insert(rec.id.clone(), Entry::new(rec));
         }
         let jobs = Arc::new(Jobs {
             store,
@@ -134,15 +143,13 @@ impl Jobs {
         self.table.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Writes the job's current in-memory record (and `result`, if any) to the store.
-    fn persist(&self, id: &str, result: Option<&[u8]>) -> Result<(), StoreError> {
+    /// Writes the job's current in-memory record to the store (a result is written with
+    /// its record, by the worker's `finish`).
+    fn persist(&self, id: &str) -> Result<(), StoreError> {
         let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
         let rec = self.table().get(id).map(|e| e.rec.clone());
         match rec {
-            Some(rec) => {
-                let result = result.filter(|_| rec.state == JobState::Done);
-                self.store.update(&rec, result)
-            }
+            Some(rec) => self.store.update(&rec, None),
             None => Ok(()),
         }
     }
@@ -169,6 +176,9 @@ fn requeue_interrupted(rec: &mut JobRecord) -> bool {
     // Interrupted (crash, kill -9, shutdown): run it again from the start.
     rec.state = JobState::Queued;
     rec.epochs_done = 0;
+    if let Some(ev) = rec.evaluations.as_mut() {
+        ev.done = 0;
+    }
     true
 }
 

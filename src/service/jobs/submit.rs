@@ -1,8 +1,7 @@
 //! Submission: a body validated with the job limits, checked against the idempotency
 //! keys and the room left for jobs, and stored durably before the `202`.
 
-use super::{now_ms, Entry, JobRecord, JobState, JobStatus, Jobs};
-use crate::integrate::Progress;
+use super::{now_ms, Entry, Evaluations, JobKind, JobRecord, JobState, JobStatus, Jobs};
 use crate::scene::{validate, Scene};
 use crate::service::errors::ApiError;
 use crate::service::threads::run_blocking;
@@ -11,11 +10,30 @@ use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
 impl Jobs {
-    /// Validates a request body with the job limits and stores the new job; returns once
-    /// the store transaction is committed. With an idempotency key already used for the
-    /// same body, returns that job instead (`true`: replayed); with a different body, 422.
+    /// Validates a light-curve request body with the job limits and stores the new job;
+    /// returns once the store transaction is committed. With an idempotency key already
+    /// used for the same body, returns that job instead (`true`: replayed); with a
+    /// different body, 422.
     pub async fn submit(
         self: &Arc<Self>,
+        body: axum::body::Bytes,
+        key: Option<String>,
+    ) -> Result<(JobStatus, bool), ApiError> {
+        self.submit_kind(JobKind::Lightcurve, body, key).await
+    }
+
+    /// [`Self::submit`] for a light-curve fit's body (`POST /v1/fits/lightcurve`).
+    pub async fn submit_fit(
+        self: &Arc<Self>,
+        body: axum::body::Bytes,
+        key: Option<String>,
+    ) -> Result<(JobStatus, bool), ApiError> {
+        self.submit_kind(JobKind::FitLightcurve, body, key).await
+    }
+
+    async fn submit_kind(
+        self: &Arc<Self>,
+        kind: JobKind,
         body: axum::body::Bytes,
         key: Option<String>,
     ) -> Result<(JobStatus, bool), ApiError> {
@@ -41,12 +59,11 @@ impl Jobs {
             move || -> Result<(JobStatus, bool), ApiError> {
                 let text = std::str::from_utf8(&body)
                     .map_err(|_| ApiError::bad_request("request body is not UTF-8"))?;
-                let request = validate::parse_request(text)?;
-                let scene = Scene::from_request(&request, &me.limits.job_limits())?;
+                let (epochs_total, evaluations) = me.accepted(kind, text)?;
                 let rec = JobRecord {
                     id: uuid::Uuid::new_v4().to_string(),
                     state: JobState::Queued,
-                    epochs_total: scene.epochs.len(),
+                    epochs_total,
                     epochs_done: 0,
                     created_ms: now_ms(),
                     started_ms: None,
@@ -54,6 +71,8 @@ impl Jobs {
                     error: None,
                     attempts: 0,
                     idempotency,
+                    kind,
+                    evaluations,
                 };
                 let id = rec.id.clone();
                 // Counted and entered under one lock, so concurrent submissions cannot
@@ -65,10 +84,7 @@ impl Jobs {
                         return Ok((found, true));
                     }
                     me.room_in(&t)?;
-                    let entry = Entry {
-                        rec: rec.clone(),
-                        progress: Arc::new(Progress::new()),
-                    };
+                    let entry = Entry::new(rec.clone());
                     let s = me.status_of(&entry);
                     t.insert(id.clone(), entry);
                     s
@@ -88,6 +104,26 @@ impl Jobs {
         let id = status.id.clone();
         let _ = self.queue.send(id);
         Ok((status, false))
+    }
+
+    /// A body of `kind` checked with the job limits: the epochs the job may compute and, for
+    /// a fit, its light curves.
+    fn accepted(
+        &self,
+        kind: JobKind,
+        text: &str,
+    ) -> Result<(usize, Option<Evaluations>), ApiError> {
+        match kind {
+            JobKind::Lightcurve => {
+                let request = validate::parse_request(text)?;
+                let scene = Scene::from_request(&request, &self.limits.job_limits())?;
+                Ok((scene.epochs.len(), None))
+            }
+            JobKind::FitLightcurve => {
+                let (epochs, evaluations) = super::fit::accepted(text, &self.limits)?;
+                Ok((epochs, Some(evaluations)))
+            }
+        }
     }
 
     /// The job submitted earlier with this idempotency key, if any; 422 when the key

@@ -19,6 +19,8 @@ pub fn record(state: JobState) -> JobRecord {
         error: None,
         attempts: u32::from(state != JobState::Queued),
         idempotency: None,
+        kind: Default::default(),
+        evaluations: None,
     }
 }
 
@@ -27,5 +29,6 @@ pub fn entry(state: JobState) -> Entry {
     Entry {
         rec: record(state),
         progress: Arc::new(Progress::new()),
+        evaluations: Default::default(),
     }
 }

@@ -2,10 +2,10 @@
 //! are free, and one job's run: the stored request parsed again, computed on the job
 //! pool, and its outcome stored before it is shown.
 
-use super::{now_ms, JobRecord, JobState, Jobs};
+use super::{fit, now_ms, JobKind, JobRecord, JobState, Jobs};
 use crate::integrate::{Cancelled, Progress};
 use crate::scene::{validate, Scene};
-use crate::service::store::StoreError;
+use crate::service::store::{Output, StoreError};
 use std::sync::atomic::Ordering;
 use std::sync::Arc;
 use tokio::sync::mpsc;
@@ -44,7 +44,7 @@ impl Jobs {
     /// One run of job `id` on the job pool, holding `slot` until the computation has
     /// stopped; its outcome is stored by [`Self::finish`].
     async fn run(self: &Arc<Self>, id: &str, slot: tokio::sync::OwnedSemaphorePermit) {
-        let progress = {
+        let (kind, progress, evaluations) = {
             let mut t = self.table();
             let Some(e) = t.get_mut(id) else { return };
             if e.rec.state != JobState::Queued || self.shutting_down.load(Ordering::SeqCst) {
@@ -54,26 +54,33 @@ impl Jobs {
             e.rec.started_ms = Some(now_ms());
             e.rec.attempts += 1;
             e.progress = Arc::new(Progress::new());
-            e.progress.clone()
+            e.evaluations = Default::default();
+            (e.rec.kind, e.progress.clone(), e.evaluations.clone())
         };
         let me = self.clone();
         let key = id.to_string();
         let outcome = tokio::task::spawn_blocking(move || {
             let _slot = slot; // held until the computation has really stopped
-            me.persist(&key, None).map_err(|e| e.to_string())?;
+            me.persist(&key).map_err(|e| e.to_string())?;
             let body = me
                 .store
                 .request(&key)
                 .map_err(|e| e.to_string())?
                 .ok_or("the stored request is missing")?;
             let text = std::str::from_utf8(&body).map_err(|_| "request body is not UTF-8")?;
+            if kind == JobKind::FitLightcurve {
+                let run = me
+                    .pool
+                    .install(|| fit::run(text, &me.limits, me.engine, &progress, &evaluations));
+                return run.map(|done| done.map(|(json, n)| (Output::Fit(json), n)));
+            }
             let scene = validate::parse_request(text)
                 .and_then(|r| Scene::from_request(&r, &me.limits.job_limits()))
                 .map_err(|e| e.to_string())?;
             match me.pool.install(|| (me.engine)(&scene, &progress)) {
                 Ok(resp) => {
-                    let json = serde_json::to_vec(&resp).map_err(|e| e.to_string())?;
-                    Ok(Some((json, resp.epochs.len())))
+                    let n = resp.epochs.len();
+                    Ok(Some((Output::Lightcurve(resp), n)))
                 }
                 Err(Cancelled) => Ok(None),
             }
@@ -121,21 +128,20 @@ impl Jobs {
 
     /// Stores a run's outcome, then shows it: a job is `done` in the table only once its
     /// result is committed, so a client never sees `done` without a result to fetch.
-    fn finish(
-        &self,
-        id: &str,
-        outcome: Result<(Vec<u8>, usize), String>,
-    ) -> Result<(), StoreError> {
+    fn finish(&self, id: &str, outcome: Result<(Output, usize), String>) -> Result<(), StoreError> {
         let _g = self.write_lock.lock().unwrap_or_else(|e| e.into_inner());
         let mut rec = match self.table().get(id) {
             // Not running any more: cancelled (and persisted) meanwhile.
             Some(e) if e.rec.state == JobState::Running => e.rec.clone(),
             _ => return Ok(()),
         };
+        if let Some(e) = self.table().get(id) {
+            rec.evaluations = e.evaluations_so_far();
+        }
         let result = settle(&mut rec, outcome, now_ms(), || {
-            self.table().get(id).map_or(0, |e| e.progress.done())
+            self.table().get(id).map_or(0, |e| e.epochs_so_far())
         });
-        self.store.update(&rec, result.as_deref())?;
+        self.store.update(&rec, result.as_ref())?;
         if rec.state == JobState::Done {
             self.metrics.add_epochs("job", rec.epochs_done as u64);
         }
@@ -150,19 +156,19 @@ impl Jobs {
 
 /// A run's outcome written into its record at `now` (Unix ms): `done` with its epoch count
 /// and the result to store, or `failed` with the message and the epochs computed so far
-/// (`done_so_far`, asked only then). Returns the result JSON, if any.
-fn settle(
+/// (`done_so_far`, asked only then). Returns the result, if any.
+fn settle<T>(
     rec: &mut JobRecord,
-    outcome: Result<(Vec<u8>, usize), String>,
+    outcome: Result<(T, usize), String>,
     now: i64,
     done_so_far: impl FnOnce() -> usize,
-) -> Option<Vec<u8>> {
+) -> Option<T> {
     rec.finished_ms = Some(now);
     match outcome {
-        Ok((json, n)) => {
+        Ok((result, n)) => {
             rec.state = JobState::Done;
             rec.epochs_done = n;
-            Some(json)
+            Some(result)
         }
         Err(msg) => {
             rec.state = JobState::Failed;
@@ -192,7 +198,7 @@ mod tests {
     #[test]
     fn a_failed_run_keeps_its_message_and_the_epochs_computed() {
         let mut rec = record(JobState::Running);
-        let result = settle(&mut rec, Err("no disk".into()), 9_000, || 6);
+        let result = settle::<Vec<u8>>(&mut rec, Err("no disk".into()), 9_000, || 6);
         assert_eq!(result, None);
         assert_eq!((rec.state, rec.epochs_done), (JobState::Failed, 6));
         assert_eq!(rec.error.as_deref(), Some("no disk"));

@@ -1,14 +1,19 @@
 //! `POST /v1/fits/brdf`: material parameters fitted to measured BRDF samples, within the
-//! request timeout, on the light-curve pool.
+//! request timeout, on the light-curve pool. `POST /v1/fits/lightcurve`: a light-curve
+//! fit, as a job (each evaluation is a light curve).
 
-use super::JsonBody;
+use super::jobs::{accepted, idempotency_key};
+use super::{example_request, JsonBody};
 use crate::fit::brdf::{self as fit_brdf, BrdfFit, BrdfFitRequest};
+use crate::fit::lightcurve::LightcurveFitRequest;
 use crate::scene::validate;
 use crate::service::errors::{ApiError, ErrorBody};
+use crate::service::jobs::JobStatus;
 use crate::service::threads::run_blocking;
 use crate::service::AppState;
 use axum::extract::State;
-use axum::http::StatusCode;
+use axum::http::{HeaderMap, StatusCode};
+use axum::response::Response as HttpResponse;
 use axum::Json;
 
 /// An example body of `POST /v1/fits/brdf`: a few samples of a glossy paint.
@@ -84,4 +89,56 @@ pub async fn post_brdf_fit(
         )
     })??;
     Ok(Json(result))
+}
+
+/// An example body of `POST /v1/fits/lightcurve`: the example request's plate, its albedo
+/// free, two observed magnitudes.
+pub fn example_lightcurve_fit() -> serde_json::Value {
+    serde_json::json!({
+        "request": example_request(),
+        "observed": [
+            { "t": 0.0, "magnitude": 4.3, "sigma": 0.02 },
+            { "t": 60.0, "magnitude": 4.7, "sigma": 0.02 }
+        ],
+        "free": ["materials.surface.albedo"]
+    })
+}
+
+/// Fit a request's parameters to an observed light curve, as a job.
+///
+/// What `glint fit-lightcurve` does: the named free parameters (`materials.<name>.<param>`,
+/// `attitude.yaw_deg`) fitted by weighted least squares on magnitudes, every evaluation a
+/// light curve of the observed epochs; with the yaw free, several yaw starts. The body is
+/// checked (with the job limits, its whole work bounded by `max_evaluations`) and stored
+/// before the `202`; the job's `percent` counts light curves against `max_evaluations`, and
+/// its result (`GET /v1/jobs/{id}/result`) is the fit: parameters, uncertainties, χ²/dof,
+/// evaluations and wall time.
+#[utoipa::path(
+    post, path = "/v1/fits/lightcurve", tag = "fits",
+    request_body(content = LightcurveFitRequest, content_type = "application/json",
+        example = json!(example_lightcurve_fit())),
+    responses(
+        (status = 202, description = "Accepted and stored", body = JobStatus,
+            headers(("Location" = String, description = "URL of the job status"))),
+        (status = 400, description = "Malformed JSON or body", body = ErrorBody),
+        (status = 401, description = "Missing or wrong bearer token", body = ErrorBody),
+        (status = 413, description = "Body, mesh or the fit's work over the job limits (`max_evaluations` light curves of the observed epochs)", body = ErrorBody),
+        (status = 415, description = "Content-Type is not application/json", body = ErrorBody),
+        (status = 422, description = "A bad field (`request.…`, `observed[3].t`, `free[1]`, `start.<path>`, `max_evaluations`), or the `Idempotency-Key` used with another body; `field` names it", body = ErrorBody),
+        (status = 429, description = "Too many jobs queued or running (see `Retry-After`)", body = ErrorBody),
+        (status = 503, description = "The job store cannot write now (see `Retry-After`)", body = ErrorBody),
+        (status = 507, description = "The job store's disk is full, or stored results are over their limit", body = ErrorBody),
+    ),
+    params(("Idempotency-Key" = Option<String>, Header,
+        description = "As for `POST /v1/jobs`: a retry with the same key and body answers \
+                       the job made the first time."))
+)]
+pub async fn post_lightcurve_fit(
+    State(st): State<AppState>,
+    headers: HeaderMap,
+    JsonBody(body): JsonBody,
+) -> Result<HttpResponse, ApiError> {
+    let key = idempotency_key(&headers)?;
+    let (status, replayed) = st.jobs.submit_fit(body, key).await?;
+    Ok(accepted(status, replayed))
 }

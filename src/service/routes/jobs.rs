@@ -3,18 +3,17 @@
 //! ([`crate::service::jobs`]) does the work.
 
 use super::{body_response, example_request, wants_csv, JsonBody};
-use crate::report::csv::to_csv;
+use crate::fit::lightcurve::LightcurveFit;
 use crate::scene::{Request, Response};
 use crate::service::errors::{ApiError, ErrorBody};
-use crate::service::jobs::{no_such_job, Deleted, JobState, JobStatus};
-use crate::service::threads::run_blocking;
+use crate::service::jobs::{no_such_job, Deleted, JobKind, JobState, JobStatus};
+use crate::service::store::Form;
 use crate::service::AppState;
 use axum::extract::rejection::QueryRejection;
 use axum::extract::{Path, Query, State};
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response as HttpResponse};
 use axum::Json;
-use base64::Engine as _;
 use serde::Deserialize;
 use utoipa::IntoParams;
 
@@ -52,6 +51,12 @@ pub async fn post_job(
 ) -> Result<HttpResponse, ApiError> {
     let key = idempotency_key(&headers)?;
     let (status, replayed) = st.jobs.submit(body, key).await?;
+    Ok(accepted(status, replayed))
+}
+
+/// The `202` of a stored job: its status, `Location` its URL, and
+/// `Idempotent-Replayed: true` when an earlier submission with the same key made it.
+pub(super) fn accepted(status: JobStatus, replayed: bool) -> HttpResponse {
     let location = format!("/v1/jobs/{}", status.id);
     let mut resp = (
         StatusCode::ACCEPTED,
@@ -63,11 +68,11 @@ pub async fn post_job(
         resp.headers_mut()
             .insert("idempotent-replayed", HeaderValue::from_static("true"));
     }
-    Ok(resp)
+    resp
 }
 
 /// The `Idempotency-Key` header, checked: 1–255 visible ASCII characters.
-fn idempotency_key(headers: &HeaderMap) -> Result<Option<String>, ApiError> {
+pub(super) fn idempotency_key(headers: &HeaderMap) -> Result<Option<String>, ApiError> {
     let Some(v) = headers.get("idempotency-key") else {
         return Ok(None);
     };
@@ -150,20 +155,31 @@ pub async fn delete_job(
     Path(id): Path<String>,
 ) -> Result<HttpResponse, ApiError> {
     Ok(match st.jobs.delete(&id).await? {
-        Deleted::Cancelled(s) => Json(s).into_response(),
+        Deleted::Cancelled(s) => Json(*s).into_response(),
         Deleted::Removed => StatusCode::NO_CONTENT.into_response(),
     })
 }
 
-/// A finished job's light curve (JSON, or CSV when `Accept` names `text/csv`).
+/// What a finished job gives: a light curve, or a light-curve fit's result.
+#[derive(serde::Serialize, utoipa::ToSchema)]
+#[serde(untagged)]
+#[allow(dead_code)] // a schema only: the stored JSON is served as it is
+pub enum JobResult {
+    Lightcurve(Box<Response>),
+    Fit(Box<LightcurveFit>),
+}
+
+/// A finished job's result: a light curve (JSON, or CSV when `Accept` names `text/csv`),
+/// or a fit job's result (JSON only).
 #[utoipa::path(
     get, path = "/v1/jobs/{id}/result", tag = "jobs",
     params(("id" = String, Path, description = "Job id")),
     responses(
-        (status = 200, description = "The light curve", content(
-            (Response = "application/json"),
+        (status = 200, description = "The light curve, or the fit", content(
+            (JobResult = "application/json"),
             (String = "text/csv"))),
         (status = 404, description = "No such job", body = ErrorBody),
+        (status = 406, description = "CSV asked of a fit's result, which is JSON only", body = ErrorBody),
         (status = 409, description = "The job is not done (yet)", body = ErrorBody),
     )
 )]
@@ -172,16 +188,22 @@ pub async fn get_job_result(
     Path(id): Path<String>,
     headers: HeaderMap,
 ) -> Result<HttpResponse, ApiError> {
-    let json = st.jobs.result(&id).await?;
-    if !wants_csv(&headers) {
-        return Ok(body_response(json, false));
+    let csv = wants_csv(&headers);
+    let form = if csv { Form::Csv } else { Form::Json };
+    // 404 / 409 first, as for any job without a result
+    let len = st.jobs.result_len(&id, form).await?;
+    if csv && st.jobs.kind(&id) == Some(JobKind::FitLightcurve) {
+        return Err(ApiError::new(
+            StatusCode::NOT_ACCEPTABLE,
+            "a fit's result is JSON only: ask for `application/json`",
+        )
+        .with_field("Accept"));
     }
-    let csv = run_blocking("converting the result", move || {
-        serde_json::from_slice::<Response>(&json).map(|r| to_csv(&r).into_bytes())
-    })
-    .await?
-    .map_err(ApiError::internal)?;
-    Ok(body_response(csv, true))
+    let body = axum::body::Body::from_stream(st.jobs.result_stream(&id, form, len));
+    let mut resp = body_response(body, csv);
+    resp.headers_mut()
+        .insert(header::CONTENT_LENGTH, HeaderValue::from(len));
+    Ok(resp)
 }
 
 /// The rendered image of one epoch of a finished job (`{epoch}.png`, epoch index from 0).
@@ -205,23 +227,7 @@ pub async fn get_thumbnail(
         .strip_suffix(".png")
         .and_then(|s| s.parse().ok())
         .ok_or_else(|| ApiError::not_found("expected `{epoch}.png`").with_field("epoch"))?;
-    let json = st.jobs.result(&id).await?;
-    let png = run_blocking("reading the image", move || -> Result<Vec<u8>, ApiError> {
-        let resp: Response = serde_json::from_slice(&json).map_err(ApiError::internal)?;
-        let thumb = resp
-            .thumbnails
-            .unwrap_or_default()
-            .into_iter()
-            .find(|t| t.epoch == epoch)
-            .ok_or_else(|| {
-                ApiError::not_found(format!("the job has no image for epoch {epoch}"))
-                    .with_field("epoch")
-            })?;
-        base64::engine::general_purpose::STANDARD
-            .decode(thumb.png_base64.as_bytes())
-            .map_err(ApiError::internal)
-    })
-    .await??;
+    let png = st.jobs.thumbnail(&id, epoch).await?;
     Ok((
         [(header::CONTENT_TYPE, HeaderValue::from_static("image/png"))],
         png,

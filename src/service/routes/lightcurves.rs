@@ -6,10 +6,11 @@ use crate::integrate::Progress;
 use crate::report::csv::to_csv;
 use crate::scene::{validate, Request, Response, Scene};
 use crate::service::errors::{ApiError, ErrorBody};
+use crate::service::limits::refused;
 use crate::service::threads::run_blocking;
 use crate::service::AppState;
 use axum::body::Bytes;
-use axum::extract::State;
+use axum::extract::{FromRequest, State};
 use axum::http::{HeaderMap, StatusCode};
 use axum::response::Response as HttpResponse;
 use std::sync::Arc;
@@ -61,8 +62,14 @@ impl Drop for CancelOnDrop {
 pub async fn post_lightcurve(
     State(st): State<AppState>,
     headers: HeaderMap,
-    JsonBody(body): JsonBody,
+    req: axum::extract::Request,
 ) -> Result<HttpResponse, ApiError> {
+    // A place before the body is read: when none is left, the 503 costs neither reading
+    // nor parsing the body (which would take the cores from the requests that run)
+    let Ok(_place) = st.slots.admit() else {
+        return Ok(refused(ApiError::busy(1)).await);
+    };
+    let JsonBody(body) = JsonBody::from_request(req, &st).await?;
     let csv = wants_csv(&headers);
     let timeout = st.limits.request_timeout;
     let scene = parse_scene(body, st.limits.sync_limits()).await?;

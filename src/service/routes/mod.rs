@@ -6,7 +6,7 @@
 //! | routes | file |
 //! |---|---|
 //! | `POST /v1/lightcurves` | `lightcurves.rs` |
-//! | `POST /v1/fits/brdf` | `fits.rs` |
+//! | `POST /v1/fits/brdf`, `POST /v1/fits/lightcurve` (a job) | `fits.rs` |
 //! | `/v1/jobs…` | `jobs.rs` |
 //! | `/v1/scenes…` | `scenes.rs` |
 //! | `/healthz`, `/readyz`, `/metrics` | `health.rs` |
@@ -34,6 +34,7 @@ pub fn api_router() -> OpenApiRouter<AppState> {
     OpenApiRouter::with_openapi(ApiDoc::openapi())
         .routes(routes!(lightcurves::post_lightcurve))
         .routes(routes!(fits::post_brdf_fit))
+        .routes(routes!(fits::post_lightcurve_fit))
         .routes(routes!(jobs::post_job, jobs::list_jobs))
         .routes(routes!(jobs::get_job, jobs::delete_job))
         .routes(routes!(jobs::get_job_result))
@@ -114,7 +115,7 @@ fn wants_csv(headers: &HeaderMap) -> bool {
 }
 
 /// A body of JSON (`application/json`) or CSV (`text/csv; charset=utf-8`).
-fn body_response(bytes: Vec<u8>, csv: bool) -> HttpResponse {
+fn body_response(body: impl Into<axum::body::Body>, csv: bool) -> HttpResponse {
     let ct = if csv {
         "text/csv; charset=utf-8"
     } else {
@@ -122,7 +123,7 @@ fn body_response(bytes: Vec<u8>, csv: bool) -> HttpResponse {
     };
     (
         [(header::CONTENT_TYPE, HeaderValue::from_static(ct))],
-        bytes,
+        body.into(),
     )
         .into_response()
 }

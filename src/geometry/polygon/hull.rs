@@ -1,0 +1,237 @@
+//! Convex hulls of points in a plane by Andrew's monotone chain: a point set's hull
+//! ([`convex_hull`]) and, by index, a hull's corners and the points near its boundary
+//! ([`HullIndices`]). Both sort with [`sort_by_position`] and walk [`monotone_chain`];
+//! each keeps its own rule for which turns keep a point, and so its own answer for
+//! collinear points and NaN turns (a NaN coordinate): [`convex_hull`] drops a point on
+//! a turn ≤ 0 and keeps it on a NaN turn, [`HullIndices`] keeps a point only on a turn
+//! > 0 (corners) or ≥ −slack·|b − o| (near points), so a NaN turn drops it.
+//!
+//! A third chain, a face's outline in `integrate/visibility/face.rs`, sorts (x, y, index)
+//! tuples with a stable sort and is not written on these: that module belongs to the
+//! visibility engine's own rewrite.
+
+use glam::DVec2;
+
+/// Sorts `order` (indices into `points`) by x, then y (`total_cmp`, unstable): the order
+/// the chain walks.
+fn sort_by_position(order: &mut [u32], points: &[DVec2]) {
+    order.sort_unstable_by(|&a, &b| {
+        let (p, q) = (points[a as usize], points[b as usize]);
+        p.x.total_cmp(&q.x).then(p.y.total_cmp(&q.y))
+    });
+}
+
+/// Andrew's monotone chain over `n` items sorted by position (`item(j)` the j-th, `at(x)`
+/// its point): the lower chain walked forwards, then the upper backwards, each without its
+/// last item (the other chain's first), appended to `out`. Before an item `b` is pushed,
+/// the chain's last item `a` (after `o`) is popped until `keeps(o, a, b)`.
+fn monotone_chain<T: Copy>(
+    n: usize,
+    item: impl Fn(usize) -> T,
+    at: impl Fn(T) -> DVec2,
+    keeps: impl Fn(DVec2, DVec2, DVec2) -> bool,
+    out: &mut Vec<T>,
+) {
+    for pass in 0..2 {
+        let start = out.len();
+        for j in 0..n {
+            let b = item(if pass == 0 { j } else { n - 1 - j });
+            while out.len() >= start + 2
+                && !keeps(at(out[out.len() - 2]), at(out[out.len() - 1]), at(b))
+            {
+                out.pop();
+            }
+            out.push(b);
+        }
+        out.pop(); // the chain's last point starts the other chain
+    }
+}
+
+/// The convex hull of `points`, counter-clockwise without collinear points, into `out`
+/// (Andrew's monotone chain); `order` is scratch.
+pub fn convex_hull(points: &[DVec2], order: &mut Vec<u32>, out: &mut Vec<DVec2>) {
+    order.clear();
+    order.extend(0..points.len() as u32);
+    sort_by_position(order, points);
+    out.clear();
+    // a turn ≤ 0 drops the middle point; a NaN turn keeps it
+    let keeps = |o: DVec2, a: DVec2, b: DVec2| {
+        let turn = (a - o).perp_dot(b - o);
+        turn > 0.0 || turn.is_nan()
+    };
+    monotone_chain(
+        order.len(),
+        |j| points[order[j] as usize],
+        |p| p,
+        keeps,
+        out,
+    );
+}
+
+/// Hull corners and near-boundary points of a set of points, by index.
+#[derive(Debug, Default, Clone)]
+pub struct HullIndices {
+    /// Corners of the convex hull, counter-clockwise, without collinear points.
+    pub corners: Vec<u32>,
+    /// Every point within the slack of the hull's boundary (the corners among them), in
+    /// no particular order: what a cut of the point set by a line can expose.
+    pub near: Vec<u32>,
+    order: Vec<u32>,
+    chain: Vec<u32>,
+}
+
+impl HullIndices {
+    /// Computes both lists for `points`; `slack` (m) is how far inside the boundary a
+    /// point still counts as on it. Points well inside an octagon of extreme points are
+    /// dropped first (Akl–Toussaint), so only a band along the boundary is sorted: a
+    /// finely meshed dish projects to thousands of points, mostly inside.
+    pub fn compute(&mut self, points: &[DVec2], slack: f64) {
+        self.compute_corners(points, slack);
+        self.compute_near(points, slack);
+    }
+
+    /// The corners alone ([`HullIndices::compute`] without `near`, which is left empty
+    /// until [`HullIndices::compute_near`] is called with the same points).
+    pub fn compute_corners(&mut self, points: &[DVec2], slack: f64) {
+        self.order.clear();
+        if points.len() > 32 {
+            let keys = |p: DVec2| [p.x, p.y, p.x + p.y, p.x - p.y];
+            let (mut lo, mut hi) = ([0u32; 4], [0u32; 4]);
+            let (mut lo_v, mut hi_v) = ([f64::INFINITY; 4], [f64::NEG_INFINITY; 4]);
+            for (i, p) in points.iter().enumerate() {
+                for (k, v) in keys(*p).into_iter().enumerate() {
+                    if v < lo_v[k] {
+                        (lo_v[k], lo[k]) = (v, i as u32);
+                    }
+                    if v > hi_v[k] {
+                        (hi_v[k], hi[k]) = (v, i as u32);
+                    }
+                }
+            }
+            // the octagon (some corners may coincide), counter-clockwise: min y, max x−y,
+            // max x, max x+y, max y, min x−y, min x, min x+y
+            let ring = [lo[1], hi[3], hi[0], hi[2], hi[1], lo[3], lo[0], lo[2]];
+            let edges: Vec<(DVec2, DVec2)> = (0..8)
+                .filter_map(|i| {
+                    let (a, b) = (points[ring[i] as usize], points[ring[(i + 1) % 8] as usize]);
+                    let e = b - a;
+                    let len = e.length();
+                    (len > 0.0).then(|| (a, e.perp() / len))
+                })
+                .collect();
+            self.order.extend((0..points.len() as u32).filter(|&i| {
+                let p = points[i as usize];
+                // perp is the inward normal of a counter-clockwise ring: a point is kept
+                // unless it lies deeper than the slack inside every edge
+                edges.len() < 3 || edges.iter().any(|&(a, m)| m.dot(p - a) <= slack)
+            }));
+        } else {
+            self.order.extend(0..points.len() as u32);
+        }
+        sort_by_position(&mut self.order, points);
+        self.corners.clear();
+        self.near.clear();
+        self.chain_pass(points, slack, false);
+    }
+
+    /// `near` for the points last given to [`HullIndices::compute_corners`].
+    pub fn compute_near(&mut self, points: &[DVec2], slack: f64) {
+        self.near.clear();
+        self.chain_pass(points, slack, true);
+        self.near.sort_unstable();
+        self.near.dedup();
+    }
+
+    /// Monotone chains over the sorted points: strict for the corners (a turn > 0 keeps
+    /// a point), tolerant (by `slack`) for the near points; a NaN turn drops it in both.
+    fn chain_pass(&mut self, points: &[DVec2], slack: f64, tolerant: bool) {
+        self.chain.clear();
+        let order = &self.order;
+        let item = |j: usize| order[j];
+        let at = |i: u32| points[i as usize];
+        if tolerant {
+            let keeps =
+                |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o) >= -slack * (b - o).length();
+            monotone_chain(order.len(), item, at, keeps, &mut self.chain);
+            self.near.extend_from_slice(&self.chain);
+        } else {
+            let keeps = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o) > 0.0;
+            monotone_chain(order.len(), item, at, keeps, &mut self.chain);
+            self.corners.extend_from_slice(&self.chain);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::polygon::twice_signed_area;
+
+    #[test]
+    fn hull_indices_find_the_corners_and_every_boundary_point() {
+        // Random points in a disc plus points placed on the edges of a square around it:
+        // the corners must be the square's, and every point within the slack of the
+        // boundary (the placed ones, exactly on it) must be among the near points.
+        let mut rnd = crate::test_rng(5);
+        let mut pts: Vec<DVec2> = (0..3000)
+            .map(|_| {
+                let (r, a) = (rnd().sqrt() * 0.9, rnd() * std::f64::consts::TAU);
+                DVec2::new(r * a.cos(), r * a.sin())
+            })
+            .collect();
+        let square = [
+            DVec2::new(-1.0, -1.0),
+            DVec2::new(1.0, -1.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(-1.0, 1.0),
+        ];
+        let first_placed = pts.len();
+        for k in 0..4 {
+            let (a, b) = (square[k], square[(k + 1) % 4]);
+            pts.extend((0..=10).map(|i| a + (b - a) * (i as f64 / 10.0)));
+        }
+        let mut h = HullIndices::default();
+        h.compute(&pts, 1e-9);
+        let mut corners: Vec<DVec2> = h.corners.iter().map(|&i| pts[i as usize]).collect();
+        assert_eq!(corners.len(), 4, "{corners:?}");
+        assert!(twice_signed_area(&corners) > 0.0, "counter-clockwise");
+        corners.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        let mut want = square.to_vec();
+        want.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+        assert_eq!(corners, want);
+        for (i, p) in pts.iter().enumerate().skip(first_placed) {
+            let found = h.near.binary_search(&(i as u32)).is_ok();
+            assert!(found, "boundary point {i} {p:?} missed");
+        }
+        // nothing from inside the disc (0.9 from the centre, 0.1 inside the square)
+        assert!(h.near.iter().all(|&i| i as usize >= first_placed));
+        // the same corners as the plain hull for points with no structure
+        let mut rnd = crate::test_rng(6);
+        let cloud: Vec<DVec2> = (0..500).map(|_| DVec2::new(rnd(), rnd() * rnd())).collect();
+        h.compute(&cloud, 0.0);
+        let (mut order, mut hull) = (Vec::new(), Vec::new());
+        convex_hull(&cloud, &mut order, &mut hull);
+        let got: Vec<DVec2> = h.corners.iter().map(|&i| cloud[i as usize]).collect();
+        assert_eq!(got, hull);
+    }
+
+    #[test]
+    fn convex_hull_of_a_square_with_inner_and_edge_points() {
+        let pts: Vec<DVec2> = [
+            (0.0, 0.0),
+            (1.0, 0.0),
+            (0.5, 0.0),
+            (1.0, 1.0),
+            (0.3, 0.4),
+            (0.0, 1.0),
+            (0.5, 1.0),
+        ]
+        .iter()
+        .map(|&(x, y)| DVec2::new(x, y))
+        .collect();
+        let (mut order, mut hull) = (Vec::new(), Vec::new());
+        convex_hull(&pts, &mut order, &mut hull);
+        assert_eq!(hull.len(), 4, "{hull:?}");
+        assert!((twice_signed_area(&hull) - 2.0).abs() < 1e-15);
+    }
+}

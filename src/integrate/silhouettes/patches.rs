@@ -10,7 +10,7 @@
 //! direction what its patches and its shadow lines cost, not what its faces cost.
 
 use super::polygons::Polygons;
-use super::topology::{Topology, NONE};
+use super::topology::{csr_of, Topology, NONE};
 use glam::DVec3;
 
 /// Most faces a patch holds.
@@ -169,8 +169,8 @@ impl Patches {
                 exit_items.push((p1, (i as u32, e.f1, e.f0)));
             }
         }
-        let (inner_at, inner) = csr(np, inner_items);
-        let (rim_at, rim) = csr(np, rim_items);
+        let (inner_at, inner) = csr_of(np, inner_items);
+        let (rim_at, rim) = csr_of(np, rim_items);
         // the exits grouped by the patch they lead into
         exit_items.sort_by_key(|&(p, (_, _, out))| (p, of_face[out as usize]));
         let mut links_at = vec![0u32; np + 1];
@@ -259,20 +259,6 @@ impl Patches {
             Facing::Mixed
         }
     }
-}
-
-/// Groups `(key, value)` pairs by key into offsets (`n + 1`) and values, keeping the
-/// values' order within a key.
-fn csr<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
-    items.sort_by_key(|x| x.0);
-    let mut at = vec![0u32; n + 1];
-    for (k, _) in &items {
-        at[*k as usize + 1] += 1;
-    }
-    for i in 0..n {
-        at[i + 1] += at[i];
-    }
-    (at, items.into_iter().map(|x| x.1).collect())
 }
 
 #[cfg(test)]

@@ -389,8 +389,9 @@ fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec
     out
 }
 
-/// Groups `(key, value)` pairs by key into offsets (`n + 1`) and values.
-fn csr_of<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
+/// Groups `(key, value)` pairs by key into offsets (`n + 1`) and values, keeping the
+/// values' order within a key (the sort is stable).
+pub(super) fn csr_of<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
     items.sort_by_key(|x| x.0);
     let mut at = vec![0u32; n + 1];
     for (k, _) in &items {

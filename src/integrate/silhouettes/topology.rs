@@ -389,10 +389,9 @@ fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec
     out
 }
 
-/// Groups `(key, value)` pairs by key into offsets (`n + 1`) and values, keeping the
-/// values' order within a key (the sort is stable).
-pub(super) fn csr_of<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
-    items.sort_by_key(|x| x.0);
+/// Groups `(key, value)` pairs by key (each below `n`) into offsets (`n + 1`) and
+/// values, keeping the values' order within a key: a counting sort, linear in the pairs.
+pub(super) fn csr_of<V>(n: usize, items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
     let mut at = vec![0u32; n + 1];
     for (k, _) in &items {
         at[*k as usize + 1] += 1;
@@ -400,7 +399,20 @@ pub(super) fn csr_of<V>(n: usize, mut items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>
     for i in 0..n {
         at[i + 1] += at[i];
     }
-    (at, items.into_iter().map(|x| x.1).collect())
+    let mut fill: Vec<u32> = at[..n].to_vec();
+    let mut slots: Vec<Option<V>> = (0..items.len()).map(|_| None).collect();
+    for (k, v) in items {
+        let f = &mut fill[k as usize];
+        slots[*f as usize] = Some(v);
+        *f += 1;
+    }
+    (
+        at,
+        slots
+            .into_iter()
+            .map(|v| v.expect("every slot filled"))
+            .collect(),
+    )
 }
 
 /// Segments (m) where triangles of different faces that share no vertex meet: each is

@@ -26,6 +26,8 @@ pub struct Fold {
     pub jump: i32,
     /// Not a valley: a face may turn from lit to dark across its shadow.
     pub bounds: bool,
+    /// The edge's faces (a valley's two sides, whose planes bound its notch).
+    pub faces: (u32, u32),
 }
 
 /// Finds every fold along unit `d` (basis across it `(u, w)`, u × w = d); `facing`: each
@@ -59,6 +61,7 @@ pub fn find(
                 top: edge.a.dot(d).max(edge.b.dot(d)),
                 jump,
                 bounds: !edge.valley,
+                faces: (edge.f0, edge.f1),
             });
         }
     };

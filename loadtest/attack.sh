@@ -57,17 +57,24 @@ full)
     ;;
 esac
 
-command -v python3 >/dev/null || { echo "python3 is needed" >&2; exit 1; }
+# what a fresh Debian machine lacks is installed from its package registry
+apt_install() {
+    local SUDO
+    SUDO=$([ "$(id -u)" = 0 ] || echo sudo)
+    $SUDO apt-get install -y -qq "$@" >/dev/null 2>&1 \
+        || { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq "$@" >/dev/null; }
+}
+command -v python3 >/dev/null || { echo "installing python3…" >&2; apt_install python3 python3-venv; }
 VENV=target/attack-venv
 if ! "$VENV/bin/schemathesis" --version 2>/dev/null | grep -q "$SCHEMATHESIS_VERSION"; then
     echo "installing schemathesis $SCHEMATHESIS_VERSION into $VENV…" >&2
-    python3 -m venv "$VENV"
+    # Debian splits venv (and the pip it seeds) into python3-venv
+    python3 -m venv "$VENV" 2>/dev/null || { rm -rf "$VENV"; apt_install python3-venv; python3 -m venv "$VENV"; }
     "$VENV/bin/pip" install --quiet --disable-pip-version-check "schemathesis==$SCHEMATHESIS_VERSION"
 fi
 if ! command -v wrk >/dev/null; then
     echo "installing wrk…" >&2
-    SUDO=$([ "$(id -u)" = 0 ] || echo sudo)
-    $SUDO apt-get install -y -qq wrk >/dev/null 2>&1 || { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq wrk >/dev/null; }
+    apt_install wrk
 fi
 
 FAILED=()

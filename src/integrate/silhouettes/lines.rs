@@ -18,8 +18,9 @@ pub struct Line {
     pub p: DVec2,
     pub q: DVec2,
     pub jump: i32,
-    /// Whether the face may turn from lit to dark across it. A valley's shadow does not:
-    /// the solid lies above both sides of it, so the count is at least 1 on both. Hence
+    /// Whether the face may turn from lit to dark across it. A valley's shadow does not on
+    /// a face outside the valley's notch ([`outside_notch`]): the solid lies above both
+    /// sides of it, so the count is at least 1 on both. Hence
     /// on a part of a face that no bounding line crosses the count is zero everywhere or
     /// nowhere: a face is cut along its bounding lines only, and a cell's count (at its
     /// centroid, through every line) decides all of it.
@@ -228,8 +229,25 @@ pub fn crossing(
         p,
         q,
         jump,
-        bounds: fold.bounds,
+        bounds: fold.bounds || !outside_notch(polys, f, fold, eps),
     })
+}
+
+/// Does face `f` lie wholly outside the notch of valley `fold` (the wedge in front of both
+/// its faces' planes)? A ray from a point outside the notch that passes the valley's edge
+/// goes through the solid on either side of it, so the valley's shadow cannot turn such a
+/// point from lit to dark; a ray that starts inside the notch may leave it on one side of
+/// the edge through no solid at all, so there the shadow bounds light like any fold's.
+/// Sufficient: every corner of `f` on or behind (within `eps`, m) one of the two planes.
+fn outside_notch(polys: &Polygons, f: usize, fold: &Fold, eps: f64) -> bool {
+    let behind = |side: u32| {
+        let n = polys.normal[side as usize];
+        polys
+            .of(f)
+            .flat_map(|k| polys.corners3(k))
+            .all(|&v| n.dot(v - fold.a) <= eps)
+    };
+    behind(fold.faces.0) || behind(fold.faces.1)
 }
 
 /// The sheets added to the count along the path from `x` to `y` (in a face's plane) by

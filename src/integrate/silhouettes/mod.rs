@@ -501,31 +501,10 @@ impl<'a> Silhouettes<'a> {
                 continue;
             }
             let fold = &dir.folds[near.fold as usize];
-            if let Some(mut line) = lines::crossing(&self.polys, f, fold, &across, one) {
-                if !line.bounds && !self.outside_notch(f, fold) {
-                    line.bounds = true;
-                }
+            if let Some(line) = lines::crossing(&self.polys, f, fold, &across, one) {
                 dir.lines.push(line);
             }
         }
-    }
-
-    /// Does face `f` lie wholly outside the notch of valley `fold` (the wedge in front of
-    /// both its faces' planes)? A ray from a point outside the notch that passes the
-    /// valley's edge goes through the solid on either side of it, so the valley's shadow
-    /// cannot turn such a point from lit to dark; a ray that starts inside the notch may
-    /// leave it on one side of the edge through no solid at all, so there the shadow
-    /// bounds light like any fold's. Sufficient: every corner of `f` on or behind one of
-    /// the two planes.
-    fn outside_notch(&self, f: usize, fold: &Fold) -> bool {
-        let behind = |side: u32| {
-            let n = self.polys.normal[side as usize];
-            self.polys
-                .of(f)
-                .flat_map(|k| self.polys.corners3(k))
-                .all(|&v| n.dot(v - fold.a) <= self.eps)
-        };
-        behind(fold.faces.0) || behind(fold.faces.1)
     }
 
     /// Rays that this epoch's counts took (for the summary's count).

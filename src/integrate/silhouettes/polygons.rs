@@ -19,8 +19,7 @@ pub struct Polygons {
     pub two_sided: Vec<bool>,
     pub convex: Vec<bool>,
     pub inside: Vec<DVec3>,
-    /// Per face: the centre and radius (m) of a sphere holding it.
-    pub centre: Vec<DVec3>,
+    /// Per face: the radius (m) of a sphere about its centroid holding it.
     pub radius: Vec<f64>,
     /// Per face: its range of polygons.
     pub of_face: Vec<(u32, u32)>,
@@ -42,7 +41,6 @@ impl Polygons {
             two_sided,
             convex: Vec::with_capacity(nf),
             inside: Vec::with_capacity(nf),
-            centre: Vec::with_capacity(nf),
             radius: Vec::with_capacity(nf),
             of_face: Vec::with_capacity(nf),
             face: Vec::new(),
@@ -62,7 +60,6 @@ impl Polygons {
             p.point.push(o);
             p.basis.push((u, w));
             p.inside.push((a + b + c) / 3.0);
-            p.centre.push(f.centroid);
             p.radius.push(f.radius);
             pts.clear();
             ids.clear();

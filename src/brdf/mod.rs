@@ -109,6 +109,20 @@ impl Brdf {
         }
     }
 
+    /// Variances of the specular lobe's half vector about its peak, along the face's
+    /// tangent t and along n × t, rad²: δ²/2 each for a Beckmann lobe of RMS slope δ,
+    /// 1/n_u and 1/n_v for Ashikhmin–Shirley's cosⁿ lobe (the same δ²/2 of its
+    /// [`Brdf::lobe_slopes`]); `None` without a specular lobe. The Sun's disk seen through
+    /// a narrow lobe ([`sun_disk`]) takes the lobe as a Gaussian of these variances.
+    pub fn lobe_variances(&self) -> Option<(f64, f64)> {
+        match self {
+            Brdf::AshikhminShirley(m) => self
+                .lobe_slopes()
+                .map(|_| (1.0 / m.nu.max(1e-300), 1.0 / m.nv.max(1e-300))),
+            _ => self.lobe_slope().map(|d| (0.5 * d * d, 0.5 * d * d)),
+        }
+    }
+
     /// A copy whose specular lobe is at least `slope` wide: a narrower lobe convolved with
     /// a Gaussian of slope √(slope² − δ²) (slopes add in quadrature), which keeps its
     /// normalisation. Used to blur the lobe over the Sun's disk ([`sun_disk`]).

@@ -13,25 +13,28 @@
 //!   rule exact for polynomials: Radon's 7 points for a lobe as wide as the disk, products
 //!   of Gauss points in r² and even angles (24 to 48 points) for narrower ones, each
 //!   within ~2e-4 of the glint's peak down to its width (~5e-4 for the narrowest).
-//! - A lobe narrower still images the disk itself, sharp edge and all: [`HEX_POINTS`]
-//!   directions spread evenly over the disk (a hexagonal pattern of equal weights),
-//!   each direction's lobe widened to [`BLOB`]·ρ when narrower, so the samples blend
-//!   into the disk's image instead of separate spikes; widening keeps each lobe's
-//!   normalisation, so the reflected energy is unchanged. Across the plane of Sun and
-//!   observer the blob is widened further, by 1/cos(g/2) at phase g, so that it stays
-//!   round in the reflected direction (see [`SunLight`]).
-//! - While the Earth hides part of the disk (penumbra), a finer hexagonal pattern
-//!   ([`PENUMBRA_RINGS`]) with its hidden points dropped averages over the visible part
-//!   only ([`SunLight::eclipsed`]).
+//! - A lobe narrower still images the disk itself, sharp edge and all: the glint is the
+//!   lobe's whole mass (its value at the mirror direction times its Gaussian volume)
+//!   times the share of the lobe inside the disk, computed exactly for a Gaussian
+//!   (see `image`). Its edge is as sharp as the lobe, at every phase.
+//! - Where that cannot hold, a hexagonal pattern of directions spread evenly over the
+//!   disk averages the lobe: for a face so near grazing that its horizon cuts the lobe
+//!   ([`HEX_POINTS`] directions), and while the Earth hides part of the disk (penumbra:
+//!   a finer pattern, [`PENUMBRA_RINGS`], with its hidden points dropped, averaging over
+//!   the visible part only, [`SunLight::eclipsed`]). Each direction's lobe is widened to
+//!   a blob ([`BLOB`]) so that the samples blend into one image, keeping each lobe's
+//!   normalisation, and across the plane of Sun and observer widened further, by
+//!   1/cos(g/2) at phase g, so that it stays round in the reflected direction.
 //!
 //! Where things are: `cubature` (the points of every rule on the unit disk, and their
-//! directions on the sky), `rule` (which rule an epoch gets, in penumbra too), `penumbra`
-//! (the Earth's disk and the directions it hides), `blob` (one direction of a rule, its
-//! lobe widened and squeezed); here the constants, [`SunLight`] and the `projected`
-//! functions.
+//! directions on the sky), `rule` (which rule an epoch gets, in penumbra too), `image`
+//! (the disk's image through a narrow lobe), `penumbra` (the Earth's disk and the
+//! directions it hides), `blob` (one direction of a rule, its lobe widened and squeezed);
+//! here the constants, [`SunLight`] and the `projected` functions.
 
 mod blob;
 mod cubature;
+mod image;
 mod penumbra;
 mod rule;
 
@@ -40,7 +43,8 @@ pub use penumbra::EarthDisk;
 use super::{Brdf, Directions, Fixed, Frame};
 use blob::{sample, widened, Sample};
 use glam::DVec3;
-use rule::disk_rule;
+use image::Image;
+use rule::{disk_rule, DiskRule};
 
 /// Lobes with an RMS slope above this many solar radii see the Sun as a point. A point
 /// Sun misses the disk's blur of the glint's peak by ρ²/(8δ²) of it (a Beckmann lobe
@@ -60,10 +64,12 @@ pub const WIDE_LOBE: f64 = 4.0;
 /// hexagonal points miss by 2.1e−3, 4.7e−3, 5.1e−3 and 2.4e−2. Near phase 180° the
 /// glint itself lies at grazing incidence and the Sun's disk straddles the face's
 /// horizon, a kink no polynomial follows; by then the width has fallen below the last
-/// and the hexagonal pattern serves.
+/// and the disk's image (`image`) serves.
 pub const SMOOTH_RULES: [(f64, usize, usize); 4] =
     [(0.8, 0, 0), (0.4, 3, 8), (0.3, 3, 10), (0.2, 4, 12)];
-/// Rings of the hexagonal pattern of directions on the disk.
+/// Rings of the hexagonal pattern of directions on the disk, for faces whose horizon cuts
+/// a narrow lobe (the pattern [`BLOB`] was tuned on; the penumbra pattern's blobs are
+/// scaled by its spacing against this one's).
 pub const RINGS: usize = 3;
 /// Directions of the hexagonal pattern: 1 + 3·RINGS·(RINGS + 1).
 pub const HEX_POINTS: usize = 1 + 3 * RINGS * (RINGS + 1);
@@ -72,7 +78,8 @@ pub const HEX_POINTS: usize = 1 + 3 * RINGS * (RINGS + 1);
 /// pattern's spacing is how sharply the Earth's limb is drawn across the glint. Penumbra
 /// lasts a few epochs of an eclipse, so the cost does not count.
 pub const PENUMBRA_RINGS: usize = 6;
-/// Smallest lobe RMS slope used for one disk direction, in solar radii. The lobe's
+/// Smallest lobe RMS slope used for one direction of a hexagonal pattern, in solar radii
+/// (for the 37-direction pattern of [`RINGS`]; scaled by the spacing for others). The lobe's
 /// width in the observer's angle is √2 times its slope, 0.25 ρ, about 0.8 of the pattern's
 /// spacing (0.31 ρ): neighbours blend and the disk's image is flat to 1e-3 (tuned on a
 /// mirror's sweep; 0.12–0.21 all keep the energy within 1 %). This is the width in the
@@ -142,11 +149,23 @@ struct Disk {
     cos_reach: f64,
     diffuse: Brdf,
     diffuse_dirs: Directions,
-    /// The specular part, widened to the blob's slope in the Sun–observer plane where
-    /// narrower.
-    spec: Brdf,
-    /// Each direction of the rule, with its weight and stretch.
-    spec_dirs: Vec<Sample>,
+    specular: Specular,
+}
+
+/// The specular part near the glint.
+#[derive(Debug, Clone)]
+enum Specular {
+    /// Averaged by a rule's points: `spec` widened to the blob's slope in the Sun–observer
+    /// plane where narrower (the penumbra pattern), each direction with its weight and
+    /// stretch.
+    Points { spec: Brdf, dirs: Vec<Sample> },
+    /// The disk's image through a lobe much narrower than it; for faces whose horizon
+    /// cuts the lobe, the hexagonal pattern's points as in `Points`.
+    Image {
+        image: Image,
+        spec: Brdf,
+        dirs: Vec<Sample>,
+    },
 }
 
 impl<'a> SunLight<'a> {
@@ -174,20 +193,39 @@ impl<'a> SunLight<'a> {
         earth: Option<EarthDisk>,
         blob: f64,
     ) -> SunLight<'a> {
-        let disk = match brdf.lobe_slope() {
-            Some(slope)
+        let disk = match brdf.lobe_slopes() {
+            Some((slope, widest))
                 if !sun_radius.is_nan() && sun_radius > 0.0 && slope <= WIDE_LOBE * sun_radius =>
             {
-                disk_rule(slope, l, v, sun_radius, earth, blob).map(|rule| {
-                    let reach = sun_radius + 2.0 * TAIL * rule.slope_in;
+                disk_rule(slope, l, v, sun_radius, earth, blob).and_then(|rule| {
                     let diffuse = brdf.split(true);
-                    let spec = widened(brdf.split(false), slope, rule.slope_in);
-                    let spec_dirs = rule
-                        .dirs
-                        .iter()
-                        .map(|&(w, d)| sample(&spec, w, d, v, slope, rule.blob, sun_radius))
-                        .collect();
-                    Disk {
+                    let (specular, reach) = match rule {
+                        DiskRule::Points(rule) => {
+                            let spec = widened(brdf.split(false), slope, rule.slope_in);
+                            let dirs = rule
+                                .dirs
+                                .iter()
+                                .map(|&(w, d)| sample(&spec, w, d, v, slope, rule.blob, sun_radius))
+                                .collect();
+                            let reach = sun_radius + 2.0 * TAIL * rule.slope_in.max(widest);
+                            (Specular::Points { spec, dirs }, reach)
+                        }
+                        DiskRule::Image { grazing } => {
+                            let least_cos = LEAST_COS_HALF_PHASE * sun_radius;
+                            let image = Image::new(brdf.split(false), l, v, sun_radius, least_cos)?;
+                            let spec = widened(brdf.split(false), slope, grazing.slope_in);
+                            let dirs = grazing
+                                .dirs
+                                .iter()
+                                .map(|&(w, d)| {
+                                    sample(&spec, w, d, v, slope, grazing.blob, sun_radius)
+                                })
+                                .collect();
+                            let reach = sun_radius + 2.0 * TAIL * grazing.slope_in.max(widest);
+                            (Specular::Image { image, spec, dirs }, reach)
+                        }
+                    };
+                    Some(Disk {
                         cos_reach: if reach >= std::f64::consts::PI {
                             -1.0
                         } else {
@@ -195,9 +233,8 @@ impl<'a> SunLight<'a> {
                         },
                         diffuse_dirs: Directions::new(&diffuse, l, v),
                         diffuse,
-                        spec,
-                        spec_dirs,
-                    }
+                        specular,
+                    })
                 })
             }
             _ => None,
@@ -234,12 +271,20 @@ impl Disk {
     /// The disk's average near the glint, sr⁻¹.
     #[inline]
     fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
-        let sum: f64 = self
-            .spec_dirs
-            .iter()
-            .map(|d| d.projected_given(&self.spec, frame, cr))
-            .sum();
-        self.diffuse_dirs.projected_given(&self.diffuse, frame, cr) + sum
+        let specular = match &self.specular {
+            Specular::Points { spec, dirs } => dirs
+                .iter()
+                .map(|d| d.projected_given(spec, frame, cr))
+                .sum(),
+            Specular::Image { image, spec, dirs } => match image.projected_given(frame, cr) {
+                Some(value) => value,
+                None => dirs
+                    .iter()
+                    .map(|d| d.projected_given(spec, frame, cr))
+                    .sum(),
+            },
+        };
+        self.diffuse_dirs.projected_given(&self.diffuse, frame, cr) + specular
     }
 }
 

@@ -7,7 +7,16 @@ use super::penumbra::EarthDisk;
 use super::{angle, PENUMBRA_RINGS, RINGS, SMOOTH_RULES};
 use glam::DVec3;
 
-/// The rule chosen for one epoch: its directions with weights (summing to 1 over the
+/// How the disk is averaged for one epoch: by points, or, for a lobe much narrower than
+/// the whole disk in view, as the disk's image through the lobe
+/// ([`Image`](super::image::Image)), with the hexagonal pattern of [`RINGS`] rings for
+/// faces so near grazing that their horizon cuts the lobe (`grazing`).
+pub(super) enum DiskRule {
+    Points(Rule),
+    Image { grazing: Rule },
+}
+
+/// A rule of points for one epoch: its directions with weights (summing to 1 over the
 /// visible part of the disk), the slope its lobes get in the Sun–observer plane, and
 /// the blob's slope (rad, in the half vector) when it is a hexagonal pattern.
 pub(super) struct Rule {
@@ -18,13 +27,14 @@ pub(super) struct Rule {
 
 /// The rule for a lobe of RMS slope `slope` against a disk of angular radius
 /// `sun_radius` (rad) about `l`, seen from `v`, perhaps partly hidden by `earth`; `blob`
-/// is the hexagonal pattern's least slope in solar radii. `None` when the Earth hides
+/// is the penumbra pattern's least slope in solar radii. `None` when the Earth hides
 /// every direction of the rule.
 ///
 /// Across the disk the lobe is narrower than its slope says when the phase angle g is
 /// large: moving the Sun by β in the plane of `l` and `v` turns the half vector by β/2,
 /// but out of that plane by β/(2·cos(g/2)). What the rule must resolve is the narrow
-/// width, slope·cos(g/2) (a quarter of the slope at g = 151°).
+/// width, slope·cos(g/2) (a quarter of the slope at g = 151°). A lobe narrower than
+/// every smooth rule's width images the disk: [`DiskRule::Image`].
 ///
 /// With part of the disk behind the Earth the finer hexagonal pattern of
 /// [`PENUMBRA_RINGS`](super::PENUMBRA_RINGS) rings serves whatever the lobe, its hidden
@@ -36,19 +46,27 @@ pub(super) fn disk_rule(
     sun_radius: f64,
     earth: Option<EarthDisk>,
     blob: f64,
-) -> Option<Rule> {
+) -> Option<DiskRule> {
     if let Some(earth) = earth.filter(|e| angle(l, e.dir) < sun_radius + e.radius) {
-        return penumbra_rule(slope, l, sun_radius, earth, blob);
+        return penumbra_rule(slope, l, sun_radius, earth, blob).map(DiskRule::Points);
     }
     let width = slope * 0.5 * (l + v).length() / sun_radius;
-    let (points, blob) = match SMOOTH_RULES.iter().position(|r| width >= r.0) {
-        Some(k) => (&smooth_rules()[k][..], None),
-        None => (hex_points(), Some(blob * sun_radius)),
-    };
-    Some(Rule {
-        dirs: disk_directions(points, l, sun_radius).collect(),
-        slope_in: blob.map_or(slope, |b| slope.max(b)),
-        blob,
+    Some(match SMOOTH_RULES.iter().position(|r| width >= r.0) {
+        Some(k) => DiskRule::Points(Rule {
+            dirs: disk_directions(&smooth_rules()[k], l, sun_radius).collect(),
+            slope_in: slope,
+            blob: None,
+        }),
+        None => {
+            let blob = blob * sun_radius;
+            DiskRule::Image {
+                grazing: Rule {
+                    dirs: disk_directions(hex_points(), l, sun_radius).collect(),
+                    slope_in: slope.max(blob),
+                    blob: Some(blob),
+                },
+            }
+        }
     })
 }
 

@@ -7,6 +7,7 @@ use crate::fit::lightcurve::LightcurveFit;
 use crate::scene::{Request, Response};
 use crate::service::errors::{ApiError, ErrorBody};
 use crate::service::jobs::{no_such_job, Deleted, JobKind, JobState, JobStatus};
+use crate::service::jobstore::ResultBody;
 use crate::service::store::Form;
 use crate::service::AppState;
 use axum::extract::rejection::QueryRejection;
@@ -118,7 +119,7 @@ pub async fn list_jobs(
     if !(1..=1000).contains(&limit) {
         return Err(ApiError::bad_request("must be between 1 and 1000").with_field("limit"));
     }
-    Ok(Json(st.jobs.list(limit, q.state)))
+    Ok(Json(st.jobs.list(limit, q.state).await?))
 }
 
 /// A job's state and progress.
@@ -136,6 +137,7 @@ pub async fn get_job(
 ) -> Result<Json<JobStatus>, ApiError> {
     st.jobs
         .status(&id)
+        .await?
         .map(Json)
         .ok_or_else(|| no_such_job(&id))
 }
@@ -191,15 +193,21 @@ pub async fn get_job_result(
     let csv = wants_csv(&headers);
     let form = if csv { Form::Csv } else { Form::Json };
     // 404 / 409 first, as for any job without a result
-    let len = st.jobs.result_len(&id, form).await?;
-    if csv && st.jobs.kind(&id) == Some(JobKind::FitLightcurve) {
+    let (kind, result) = st.jobs.result(&id, form).await?;
+    if csv && kind == JobKind::FitLightcurve {
         return Err(ApiError::new(
             StatusCode::NOT_ACCEPTABLE,
             "a fit's result is JSON only: ask for `application/json`",
         )
         .with_field("Accept"));
     }
-    let body = axum::body::Body::from_stream(st.jobs.result_stream(&id, form, len));
+    let (body, len) = match result {
+        ResultBody::Stream { len, stream } => (axum::body::Body::from_stream(stream), len),
+        ResultBody::Whole(bytes) => {
+            let len = bytes.len() as u64;
+            (axum::body::Body::from(bytes), len)
+        }
+    };
     let mut resp = body_response(body, csv);
     resp.headers_mut()
         .insert(header::CONTENT_LENGTH, HeaderValue::from(len));

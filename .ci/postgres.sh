@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A throwaway PostgreSQL for the tests: `start DIR PORT` makes a cluster in DIR (initdb,
 # trust auth on loopback, fsync off) and starts it on 127.0.0.1:PORT; `stop DIR` stops it
-# (fast: connections are cut), `restart DIR` stops and starts it again. Installs
+# (fast: connections are cut), `resume DIR` starts a stopped one again on its port,
+# `restart DIR` stops and starts it. Installs
 # PostgreSQL from apt when its binaries are missing. PostgreSQL refuses to run as root:
 # as root, the cluster runs as the `postgres` user (created with the package), which owns
 # DIR. Prints nothing on success but the URL after `start`:
@@ -32,7 +33,12 @@ as_owner() {
     fi
 }
 
-cmd=${1:?usage: postgres.sh start DIR PORT | stop DIR | restart DIR}
+# The server's settings: loopback only, no Unix socket, no fsync (tests only).
+options() {
+    echo "-h 127.0.0.1 -p $1 -k '' -c fsync=off -c synchronous_commit=off -c full_page_writes=off -c max_connections=300"
+}
+
+cmd=${1:?usage: postgres.sh start DIR PORT | stop DIR | restart DIR | resume DIR}
 dir=${2:?data directory}
 bin=$(bindir)
 
@@ -48,10 +54,12 @@ start)
         as_owner "$bin/initdb" -D "$dir" -U postgres --auth=trust --no-sync -E UTF8 >"$dir.initdb.log" 2>&1 \
             || { cat "$dir.initdb.log" >&2; exit 1; }
     fi
-    as_owner "$bin/pg_ctl" -D "$dir" -l "$dir/server.log" -w -t 60 \
-        -o "-h 127.0.0.1 -p $port -k '' -c fsync=off -c synchronous_commit=off -c full_page_writes=off -c max_connections=300" \
-        start >/dev/null
+    echo "$port" >"$dir.port"
+    as_owner "$bin/pg_ctl" -D "$dir" -l "$dir/server.log" -w -t 60 -o "$(options "$port")" start >/dev/null
     echo "postgres://postgres@127.0.0.1:$port/postgres"
+    ;;
+resume)
+    as_owner "$bin/pg_ctl" -D "$dir" -l "$dir/server.log" -w -t 60 -o "$(options "$(cat "$dir.port")")" start >/dev/null
     ;;
 stop)
     as_owner "$bin/pg_ctl" -D "$dir" -m fast -w -t 60 stop >/dev/null
@@ -60,7 +68,7 @@ restart)
     as_owner "$bin/pg_ctl" -D "$dir" -m fast -w -t 60 restart >/dev/null
     ;;
 *)
-    echo "usage: postgres.sh start DIR PORT | stop DIR | restart DIR" >&2
+    echo "usage: postgres.sh start DIR PORT | stop DIR | restart DIR | resume DIR" >&2
     exit 2
     ;;
 esac

@@ -43,7 +43,7 @@ pub const CANCEL_CHANNEL: &str = "glint_cancel";
 
 /// Advisory lock key held by a submission's transaction, so that the room check and the
 /// idempotency check see every other submission ("glinq" in ASCII).
-const SUBMIT_LOCK: i64 = 0x676c_696e_71;
+const SUBMIT_LOCK: i64 = 0x0067_6c69_6e71;
 
 /// A database failure: never the client's fault, a `503` with `Retry-After`.
 #[derive(Debug, thiserror::Error)]

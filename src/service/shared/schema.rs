@@ -16,7 +16,7 @@ use tokio_postgres::Client;
 pub const SCHEMA_VERSION: i32 = 1;
 
 /// Advisory lock key held while migrating ("glint" in ASCII).
-const MIGRATION_LOCK: i64 = 0x676c_696e_74;
+const MIGRATION_LOCK: i64 = 0x0067_6c69_6e74;
 
 /// Each migration's SQL, by the version it brings the schema to.
 const MIGRATIONS: &[(i32, &str)] = &[(

@@ -84,6 +84,8 @@ pub fn run(args: &WorkerArgs) -> anyhow::Result<()> {
         super::serve::shutdown_signal().await;
         eprintln!("glint worker: stopping; chunks in progress go back to the queue");
         workers.shutdown(Duration::from_secs(10)).await;
+        // The measurement (loadtest/queue_scaling.sh) reads this line.
+        eprintln!("glint worker: {}", workers.timings.summary());
         Ok(())
     })
 }

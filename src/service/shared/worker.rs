@@ -14,7 +14,7 @@ use crate::service::limits::ServiceLimits;
 use deadpool_postgres::Pool;
 use futures_util::StreamExt;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use tokio::sync::Notify;
@@ -78,8 +78,38 @@ pub struct Workers {
     inputs: Mutex<HashMap<String, Arc<JobInput>>>,
     active: AtomicUsize,
     idle: Notify,
-    /// Chunks this process has written (tests and the measurement read it).
-    pub written: AtomicUsize,
+    /// What this process's chunks took, for the queue's overhead (`glint worker` prints
+    /// it when it stops).
+    pub timings: Timings,
+}
+
+/// Time spent on the chunks this process claimed and wrote, in nanoseconds: the
+/// queue's part (the claim's transaction, the write's) against the computation's.
+#[derive(Debug, Default)]
+pub struct Timings {
+    pub claimed: AtomicU64,
+    pub claim_ns: AtomicU64,
+    pub written: AtomicU64,
+    pub write_ns: AtomicU64,
+    pub compute_ns: AtomicU64,
+}
+
+impl Timings {
+    /// One line: chunks, and the mean claim, write and computation per chunk in ms.
+    pub fn summary(&self) -> String {
+        let ms = |ns: &AtomicU64, n: &AtomicU64| {
+            ns.load(Ordering::Relaxed) as f64 / 1e6 / n.load(Ordering::Relaxed).max(1) as f64
+        };
+        let claim = ms(&self.claim_ns, &self.claimed);
+        let write = ms(&self.write_ns, &self.written);
+        let compute = ms(&self.compute_ns, &self.written);
+        format!(
+            "{} chunks written; per chunk: claim {claim:.2} ms, write {write:.2} ms, \
+             compute {compute:.1} ms (queue overhead {:.2} % of the computation)",
+            self.written.load(Ordering::Relaxed),
+            100.0 * (claim + write) / compute.max(1e-9)
+        )
+    }
 }
 
 /// The first wait after a database failure; it doubles up to [`MAX_BACKOFF`].
@@ -105,7 +135,7 @@ impl Workers {
             inputs: Mutex::new(HashMap::new()),
             active: AtomicUsize::new(0),
             idle: Notify::new(),
-            written: AtomicUsize::new(0),
+            timings: Timings::default(),
         });
         tokio::spawn(w.clone().listen());
         for n in 0..w.cfg.workers.max(1) {
@@ -223,8 +253,13 @@ impl Workers {
             let notified = self.wake.notified();
             tokio::pin!(notified);
             notified.as_mut().enable();
+            let began = std::time::Instant::now();
             match self.claim(&name).await {
                 Ok(Some(c)) => {
+                    let t = &self.timings;
+                    t.claim_ns
+                        .fetch_add(began.elapsed().as_nanos() as u64, Ordering::Relaxed);
+                    t.claimed.fetch_add(1, Ordering::Relaxed);
                     backoff = FIRST_BACKOFF;
                     self.run(&name, c).await;
                 }
@@ -359,6 +394,7 @@ impl Workers {
         let me = self.clone();
         let chunk = c.clone();
         let p = progress.clone();
+        let began = std::time::Instant::now();
         let outcome = tokio::task::spawn_blocking(move || me.compute(&input, &chunk, &p))
             .await
             .unwrap_or_else(|e| {
@@ -375,8 +411,19 @@ impl Workers {
             });
         renewal.abort();
         self.lock_running().remove(&(c.job.clone(), c.idx));
+        let computed = began.elapsed();
         match outcome {
-            Ok(Some(done)) => self.write(name, &c, done).await,
+            Ok(Some(done)) => {
+                let began = std::time::Instant::now();
+                if self.write(name, &c, done).await {
+                    let t = &self.timings;
+                    t.write_ns
+                        .fetch_add(began.elapsed().as_nanos() as u64, Ordering::Relaxed);
+                    t.compute_ns
+                        .fetch_add(computed.as_nanos() as u64, Ordering::Relaxed);
+                    t.written.fetch_add(1, Ordering::Relaxed);
+                }
+            }
             Ok(None) => {
                 if self.stopping() {
                     let _ = self.release(name, &c).await;
@@ -463,20 +510,20 @@ impl Workers {
     }
 
     /// Writes a computed chunk, retrying with backoff while the database is away (for up
-    /// to ten leases: by then another worker has long taken the chunk over).
-    async fn write(&self, name: &str, c: &Claimed, done: Done) {
+    /// to ten leases: by then another worker has long taken the chunk over). `true` when
+    /// this write stored the chunk.
+    async fn write(&self, name: &str, c: &Claimed, done: Done) -> bool {
         let mut backoff = FIRST_BACKOFF;
         let give_up = tokio::time::Instant::now() + self.cfg.lease * 10;
         loop {
             match self.write_once(name, c, &done).await {
                 Ok(stored) => {
                     if stored {
-                        self.written.fetch_add(1, Ordering::Relaxed);
                         if let Some(m) = &self.cfg.metrics {
                             m.add_epochs("job", done.epochs as u64);
                         }
                     }
-                    return;
+                    return stored;
                 }
                 Err(e) if tokio::time::Instant::now() < give_up => {
                     tracing::warn!(
@@ -493,7 +540,7 @@ impl Workers {
                         chunk = c.idx,
                         "writing the chunk: {e}; left to the queue"
                     );
-                    return;
+                    return false;
                 }
             }
         }

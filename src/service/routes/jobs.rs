@@ -108,6 +108,7 @@ pub struct ListQuery {
     responses(
         (status = 200, description = "Jobs, newest first", body = Vec<JobStatus>),
         (status = 400, description = "Bad query", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn list_jobs(
@@ -129,6 +130,7 @@ pub async fn list_jobs(
     responses(
         (status = 200, description = "The job", body = JobStatus),
         (status = 404, description = "No such job (or it expired)", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn get_job(
@@ -150,6 +152,7 @@ pub async fn get_job(
         (status = 200, description = "The job was queued or running and is now cancelled", body = JobStatus),
         (status = 204, description = "The job had finished; it and its result were removed"),
         (status = 404, description = "No such job", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read or written now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn delete_job(
@@ -183,6 +186,7 @@ pub enum JobResult {
         (status = 404, description = "No such job", body = ErrorBody),
         (status = 406, description = "CSV asked of a fit's result, which is JSON only", body = ErrorBody),
         (status = 409, description = "The job is not done (yet)", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn get_job_result(
@@ -225,6 +229,7 @@ pub async fn get_job_result(
         (status = 200, description = "The PNG", content_type = "image/png", body = Vec<u8>),
         (status = 404, description = "No such job, or no image for that epoch", body = ErrorBody),
         (status = 409, description = "The job is not done (yet)", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn get_thumbnail(

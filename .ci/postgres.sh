@@ -49,6 +49,8 @@ start)
     if [ "$(id -u)" = 0 ]; then
         id postgres >/dev/null 2>&1 || useradd --system --home-dir /var/lib/postgresql postgres
         chown postgres "$dir"
+        # the postgres user must reach DIR through its parent
+        chmod o+x "$(dirname "$dir")"
     fi
     if [ ! -f "$dir/PG_VERSION" ]; then
         as_owner "$bin/initdb" -D "$dir" -U postgres --auth=trust --no-sync -E UTF8 >"$dir.initdb.log" 2>&1 \

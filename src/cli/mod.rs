@@ -4,6 +4,7 @@ pub mod fit;
 pub mod serve;
 pub mod simulate;
 pub mod tradeoff;
+pub mod worker;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -41,6 +42,9 @@ pub enum Command {
     },
     /// Run the HTTP service (also what `glint` with no arguments does).
     Serve(serve::ServeArgs),
+    /// Compute chunks of jobs from a shared PostgreSQL queue (no HTTP API): as many of
+    /// these, on as many machines, as the work needs.
+    Worker(worker::WorkerArgs),
     /// Print the service's OpenAPI document (committed as openapi/openapi.json).
     Openapi,
     /// Exit 0 when the service at --addr answers GET /healthz with 200 (container HEALTHCHECK).
@@ -79,6 +83,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Some(Command::SampleBrdf(args)) => fit::run_sample(&args),
         Some(Command::ExportObjects { dir, detail }) => export_objects(&dir, detail.as_deref()),
         Some(Command::Serve(args)) => serve::run(&args),
+        Some(Command::Worker(args)) => worker::run(&args),
         Some(Command::Openapi) => serve::print_openapi(),
         Some(Command::Healthcheck { addr }) => serve::healthcheck(addr),
         None => serve::run_default(),

@@ -73,6 +73,52 @@ pub struct ServeArgs {
     /// How long finished jobs and their results are kept, seconds (default 7 days).
     #[arg(long, env = "GLINT_RESULT_TTL_SECS", default_value_t = 7.0 * 86400.0)]
     pub result_ttl_secs: f64,
+    #[command(flatten)]
+    pub queue: QueueArgs,
+}
+
+/// The shared PostgreSQL queue's flags (`glint serve` and `glint worker`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct QueueArgs {
+    /// Keep jobs on a shared PostgreSQL queue (`postgres://user:pass@host:port/db`)
+    /// instead of the embedded store in --data-dir: any number of processes share it.
+    #[arg(long, env = "GLINT_DATABASE_URL", hide_env_values = true)]
+    pub database_url: Option<String>,
+    /// With --database-url: chunks this process computes at once (0: API only).
+    #[arg(long, env = "GLINT_WORKERS", default_value_t = 1)]
+    pub workers: usize,
+    /// With --database-url: epochs per chunk (default: about a second of work each,
+    /// estimated from the mesh).
+    #[arg(long, env = "GLINT_CHUNK_EPOCHS")]
+    pub chunk_epochs: Option<usize>,
+    /// With --database-url: seconds a claimed chunk stays its worker's without a renewal
+    /// (renewed every third); a crashed worker's chunk returns to the queue after it.
+    #[arg(long, env = "GLINT_LEASE_SECS", default_value_t = 30.0)]
+    pub lease_secs: f64,
+}
+
+impl QueueArgs {
+    /// The shared queue's settings, `None` without a database URL.
+    pub fn config(&self) -> anyhow::Result<Option<crate::service::shared::SharedConfig>> {
+        let Some(url) = self.database_url.as_deref().filter(|u| !u.is_empty()) else {
+            return Ok(None);
+        };
+        anyhow::ensure!(
+            self.lease_secs.is_finite() && self.lease_secs >= 0.3 && self.lease_secs < 1e6,
+            "--lease-secs must be at least 0.3 seconds, got {}",
+            self.lease_secs
+        );
+        anyhow::ensure!(
+            self.chunk_epochs != Some(0),
+            "--chunk-epochs must be at least 1"
+        );
+        Ok(Some(crate::service::shared::SharedConfig {
+            database: crate::service::shared::parse_url(url)?,
+            chunk_epochs: self.chunk_epochs,
+            workers: self.workers,
+            lease: Duration::from_secs_f64(self.lease_secs),
+        }))
+    }
 }
 
 impl ServeArgs {
@@ -129,6 +175,7 @@ impl ServeArgs {
             },
             result_ttl: secs("result-ttl-secs", self.result_ttl_secs)?,
             engine: crate::simulate_with,
+            shared: self.queue.config()?,
         })
     }
 }
@@ -159,13 +206,24 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
         } else {
             "no authentication"
         };
-        let data_dir = config.data_dir.clone();
+        let store = match &config.shared {
+            None => format!("data dir {}", config.data_dir.display()),
+            Some(s) => format!(
+                "shared PostgreSQL queue at {}:{:?}, {} worker(s)",
+                s.database
+                    .get_hosts()
+                    .first()
+                    .map(|h| format!("{h:?}"))
+                    .unwrap_or_default(),
+                s.database.get_ports().first().copied().unwrap_or(5432),
+                s.workers
+            ),
+        };
         let running = service::start(config).await?;
         // Tests and scripts read this line to learn the port (with --addr …:0).
         eprintln!(
-            "glint: listening on http://{} (data dir {}, {auth}); docs at /docs",
-            running.addr,
-            data_dir.display()
+            "glint: listening on http://{} ({store}, {auth}); docs at /docs",
+            running.addr
         );
         shutdown_signal().await;
         eprintln!("glint: shutting down");
@@ -176,7 +234,7 @@ pub fn run(args: &ServeArgs) -> anyhow::Result<()> {
 /// The service's log on stderr: one line a request, faults with their backtraces. Its
 /// level comes from `GLINT_LOG` (`off`, `error`, `warn`, `info` — the default — `debug`,
 /// `trace`).
-fn init_log() -> anyhow::Result<()> {
+pub(crate) fn init_log() -> anyhow::Result<()> {
     use tracing_subscriber::filter::LevelFilter;
     let level = match std::env::var("GLINT_LOG") {
         Err(_) => LevelFilter::INFO,
@@ -195,7 +253,7 @@ fn init_log() -> anyhow::Result<()> {
     Ok(())
 }
 
-async fn shutdown_signal() {
+pub(crate) async fn shutdown_signal() {
     let ctrl_c = async {
         let _ = tokio::signal::ctrl_c().await;
     };

@@ -11,6 +11,7 @@
 
 pub mod errors;
 pub mod jobs;
+pub mod jobstore;
 pub mod limits;
 pub mod metrics;
 pub mod openapi;
@@ -19,6 +20,7 @@ pub mod request_id;
 pub mod routes;
 pub mod scenes;
 pub mod server;
+pub mod shared;
 pub mod store;
 pub mod threads;
 
@@ -60,6 +62,8 @@ pub struct Config {
     pub result_ttl: Duration,
     /// The computation behind light curves and jobs.
     pub engine: Engine,
+    /// A shared PostgreSQL queue instead of the embedded store (`--database-url`).
+    pub shared: Option<shared::SharedConfig>,
 }
 
 /// The computation the service runs for a light curve or a job: [`crate::simulate_with`].
@@ -77,6 +81,7 @@ impl Default for Config {
             limits: ServiceLimits::default(),
             result_ttl: Duration::from_secs(7 * 24 * 3600),
             engine: crate::simulate_with,
+            shared: None,
         }
     }
 }
@@ -86,9 +91,8 @@ impl Default for Config {
 pub struct AppState {
     pub limits: Arc<ServiceLimits>,
     pub slots: Arc<Slots>,
-    pub jobs: Arc<Jobs>,
+    pub jobs: jobstore::JobStore,
     pub metrics: Arc<Metrics>,
-    pub store: Arc<Store>,
     pub pools: threads::Pools,
     pub engine: Engine,
 }
@@ -157,29 +161,45 @@ fn num_cores() -> usize {
     std::thread::available_parallelism().map_or(2, |n| n.get())
 }
 
-/// Opens the store, restarts unfinished jobs and builds the router. Runs inside the tokio
+/// Opens the store (the embedded one, or the shared queue: migrated, its workers
+/// started), restarts unfinished jobs and builds the router. Runs inside the tokio
 /// runtime (the job manager spawns its tasks).
-pub fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
-    let store = Arc::new(Store::open(&config.data_dir)?);
+pub async fn build(config: &Config) -> anyhow::Result<(Router, AppState)> {
     let limits = config.limits.clone();
     let slots = Arc::new(Slots::new(limits.max_concurrent, limits.max_queued));
     let metrics = Arc::new(Metrics::default());
     let pools = threads::Pools::new(num_cores())?;
-    let jobs = Jobs::start(
-        store.clone(),
-        slots.clone(),
-        metrics.clone(),
-        pools.jobs.clone(),
-        limits.clone(),
-        config.result_ttl,
-        config.engine,
-    )?;
+    let jobs = match &config.shared {
+        None => {
+            let store = Arc::new(Store::open(&config.data_dir)?);
+            let jobs = Jobs::start(
+                store.clone(),
+                slots.clone(),
+                metrics.clone(),
+                pools.jobs.clone(),
+                limits.clone(),
+                config.result_ttl,
+                config.engine,
+            )?;
+            jobstore::JobStore::Embedded { jobs, store }
+        }
+        Some(shared) => jobstore::JobStore::Shared(
+            shared::Shared::start(
+                shared,
+                limits.clone(),
+                config.result_ttl,
+                config.engine,
+                pools.jobs.clone(),
+                metrics.clone(),
+            )
+            .await?,
+        ),
+    };
     let state = AppState {
         limits: Arc::new(limits.clone()),
         slots,
         jobs,
         metrics: metrics.clone(),
-        store,
         pools,
         engine: config.engine,
     };
@@ -252,7 +272,7 @@ pub async fn start(config: Config) -> anyhow::Result<Running> {
             )
         })?;
     let addr = listener.local_addr()?;
-    let (router, state) = build(&config)?;
+    let (router, state) = build(&config).await?;
     let header_timeout = config.limits.header_timeout;
     let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
     let task = tokio::spawn(async move {

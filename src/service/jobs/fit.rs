@@ -32,7 +32,7 @@ fn prepared(text: &str, limits: &ServiceLimits) -> Result<Prepared, ValidationEr
 
 /// What a fit job's record holds before it runs: the epochs it may compute (observed
 /// epochs × its most light curves) and its light curves (none yet).
-pub(super) fn accepted(
+pub(crate) fn accepted(
     text: &str,
     limits: &ServiceLimits,
 ) -> Result<(usize, Evaluations), ApiError> {
@@ -44,7 +44,7 @@ pub(super) fn accepted(
 /// Runs the fit a stored body asks for on this thread (the caller installs the job pool),
 /// its light curves on `engine` under `progress` and counted in `evaluations`: the result
 /// JSON and the epochs computed, `None` when cancelled, or the error's text.
-pub(super) fn run(
+pub(crate) fn run(
     text: &str,
     limits: &ServiceLimits,
     engine: crate::service::Engine,

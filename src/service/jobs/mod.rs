@@ -22,7 +22,7 @@
 
 mod cancel;
 mod expiry;
-mod fit;
+pub(crate) mod fit;
 mod status;
 mod submit;
 #[cfg(test)]
@@ -31,6 +31,7 @@ mod worker;
 
 pub use super::record::{Evaluations, JobKind, JobRecord, JobState};
 pub use cancel::Deleted;
+pub(crate) use status::status_from;
 pub use status::{no_such_job, rfc3339, JobStatus};
 
 use super::limits::{ServiceLimits, Slots};

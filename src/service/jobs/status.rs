@@ -1,7 +1,7 @@
 //! What a client sees of the jobs: one job's status (`GET /v1/jobs/{id}`), the recent
 //! jobs, the count in each state, and a finished job's stored result.
 
-use super::{Entry, JobKind, JobState, Jobs};
+use super::{Entry, Evaluations, JobKind, JobRecord, JobState, Jobs};
 use crate::service::errors::ApiError;
 use crate::service::store::{Form, Store};
 use crate::service::threads::run_blocking;
@@ -66,6 +66,17 @@ fn status_of(e: &Entry, ttl: Duration) -> JobStatus {
         (JobState::Done, None) => r.epochs_total,
         _ => r.epochs_done,
     };
+    status_from(r, done, evaluations, ttl)
+}
+
+/// The status of the job `r` with `done` epochs computed and, for a fit, its light
+/// curves `evaluations`; a finished job expires `ttl` after it finished.
+pub(crate) fn status_from(
+    r: &JobRecord,
+    done: usize,
+    evaluations: Option<Evaluations>,
+    ttl: Duration,
+) -> JobStatus {
     let percent = match (r.state, evaluations) {
         (JobState::Done, _) => 100.0,
         (_, Some(ev)) if ev.max > 0 => 100.0 * ev.done as f64 / ev.max as f64,

@@ -44,26 +44,12 @@ pub async fn readyz(State(st): State<AppState>) -> HttpResponse {
         )
             .into_response();
     }
-    let store = st.store.clone();
-    match tokio::task::spawn_blocking(move || store.check()).await {
-        Ok(Ok(())) => Json(Health {
+    match st.jobs.check().await {
+        Ok(()) => Json(Health {
             status: "ok".into(),
         })
         .into_response(),
-        Ok(Err(e)) => (
-            StatusCode::SERVICE_UNAVAILABLE,
-            Json(Health {
-                status: e.to_string(),
-            }),
-        )
-            .into_response(),
-        Err(e) => (
-            StatusCode::SERVICE_UNAVAILABLE,
-            Json(Health {
-                status: e.to_string(),
-            }),
-        )
-            .into_response(),
+        Err(e) => (StatusCode::SERVICE_UNAVAILABLE, Json(Health { status: e })).into_response(),
     }
 }
 
@@ -71,7 +57,10 @@ pub async fn readyz(State(st): State<AppState>) -> HttpResponse {
 #[utoipa::path(get, path = "/metrics", tag = "operations",
     responses((status = 200, description = "Prometheus text format 0.0.4", content_type = "text/plain", body = String)))]
 pub async fn metrics(State(st): State<AppState>) -> HttpResponse {
-    let counts = st.jobs.counts();
+    let counts = match st.jobs.counts().await {
+        Ok(c) => c,
+        Err(e) => return e.into_response(),
+    };
     let gauges = Gauges {
         computations_running: st.slots.in_use(),
         requests_waiting: st.slots.waiting(),

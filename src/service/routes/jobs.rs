@@ -7,6 +7,7 @@ use crate::fit::lightcurve::LightcurveFit;
 use crate::scene::{Request, Response};
 use crate::service::errors::{ApiError, ErrorBody};
 use crate::service::jobs::{no_such_job, Deleted, JobKind, JobState, JobStatus};
+use crate::service::jobstore::ResultBody;
 use crate::service::store::Form;
 use crate::service::AppState;
 use axum::extract::rejection::QueryRejection;
@@ -107,6 +108,7 @@ pub struct ListQuery {
     responses(
         (status = 200, description = "Jobs, newest first", body = Vec<JobStatus>),
         (status = 400, description = "Bad query", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn list_jobs(
@@ -118,7 +120,7 @@ pub async fn list_jobs(
     if !(1..=1000).contains(&limit) {
         return Err(ApiError::bad_request("must be between 1 and 1000").with_field("limit"));
     }
-    Ok(Json(st.jobs.list(limit, q.state)))
+    Ok(Json(st.jobs.list(limit, q.state).await?))
 }
 
 /// A job's state and progress.
@@ -128,6 +130,7 @@ pub async fn list_jobs(
     responses(
         (status = 200, description = "The job", body = JobStatus),
         (status = 404, description = "No such job (or it expired)", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn get_job(
@@ -136,6 +139,7 @@ pub async fn get_job(
 ) -> Result<Json<JobStatus>, ApiError> {
     st.jobs
         .status(&id)
+        .await?
         .map(Json)
         .ok_or_else(|| no_such_job(&id))
 }
@@ -148,6 +152,7 @@ pub async fn get_job(
         (status = 200, description = "The job was queued or running and is now cancelled", body = JobStatus),
         (status = 204, description = "The job had finished; it and its result were removed"),
         (status = 404, description = "No such job", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read or written now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn delete_job(
@@ -181,6 +186,7 @@ pub enum JobResult {
         (status = 404, description = "No such job", body = ErrorBody),
         (status = 406, description = "CSV asked of a fit's result, which is JSON only", body = ErrorBody),
         (status = 409, description = "The job is not done (yet)", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn get_job_result(
@@ -191,15 +197,21 @@ pub async fn get_job_result(
     let csv = wants_csv(&headers);
     let form = if csv { Form::Csv } else { Form::Json };
     // 404 / 409 first, as for any job without a result
-    let len = st.jobs.result_len(&id, form).await?;
-    if csv && st.jobs.kind(&id) == Some(JobKind::FitLightcurve) {
+    let (kind, result) = st.jobs.result(&id, form).await?;
+    if csv && kind == JobKind::FitLightcurve {
         return Err(ApiError::new(
             StatusCode::NOT_ACCEPTABLE,
             "a fit's result is JSON only: ask for `application/json`",
         )
         .with_field("Accept"));
     }
-    let body = axum::body::Body::from_stream(st.jobs.result_stream(&id, form, len));
+    let (body, len) = match result {
+        ResultBody::Stream { len, stream } => (axum::body::Body::from_stream(stream), len),
+        ResultBody::Whole(bytes) => {
+            let len = bytes.len() as u64;
+            (axum::body::Body::from(bytes), len)
+        }
+    };
     let mut resp = body_response(body, csv);
     resp.headers_mut()
         .insert(header::CONTENT_LENGTH, HeaderValue::from(len));
@@ -217,6 +229,7 @@ pub async fn get_job_result(
         (status = 200, description = "The PNG", content_type = "image/png", body = Vec<u8>),
         (status = 404, description = "No such job, or no image for that epoch", body = ErrorBody),
         (status = 409, description = "The job is not done (yet)", body = ErrorBody),
+        (status = 503, description = "The job store cannot be read now (see `Retry-After`)", body = ErrorBody),
     )
 )]
 pub async fn get_thumbnail(

@@ -61,8 +61,7 @@ pub struct EpochLight {
 impl EpochLight {
     pub fn at(ill: &Illumination, epoch: &Epoch) -> EpochLight {
         let l = epoch.sun;
-        let es_full =
-            sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
+        let es_full = ill.sun_irradiance(epoch.sun_distance_m);
         let (hidden, penumbra, earthshine) = match epoch.earth {
             None => (0.0, None, earth::Earthshine::default()),
             Some(e) => {
@@ -349,7 +348,13 @@ fn epoch_result(
         .is_some_and(|e| crate::radiometry::earth::hides_observer(e, epoch.observer));
     let seen = if blocked { 0.0 } else { 1.0 };
     let irradiance = seen * intensity / r2;
-    let mag = magnitude::apparent(irradiance, p.sun_band_1au);
+    let mag = magnitude::apparent(
+        irradiance,
+        p.sun_band_1au,
+        p.scene.illumination.sun_magnitude,
+    );
+    let phase = angle_between(epoch.sun, v);
+    let m_1000km = magnitude::at_1000km(mag, range);
     EpochResult {
         t: epoch.t,
         irradiance_w_m2: irradiance,
@@ -357,8 +362,10 @@ fn epoch_result(
         earthshine_w_m2: seen * earth_sum / r2,
         intensity_w_sr: intensity,
         magnitude: mag,
-        magnitude_std: magnitude::standardised(mag, range),
-        phase_angle_deg: angle_between(epoch.sun, v).to_degrees(),
+        magnitude_1000km: m_1000km,
+        magnitude_standard: magnitude::standard(m_1000km, phase),
+        magnitude_intrinsic: magnitude::intrinsic(m_1000km, phase),
+        phase_angle_deg: phase.to_degrees(),
         range_m: range,
         lit_visible_area_m2: lit_visible_area,
         eclipse: light.eclipse,

@@ -13,7 +13,6 @@ pub mod silhouettes;
 pub mod visibility;
 
 use crate::geometry::{convex, Faces};
-use crate::radiometry::sun;
 use crate::scene::{EpochResult, MaterialAlbedo, Method, Response, Scene, Summary};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -158,7 +157,7 @@ impl<'a> Prepared<'a> {
             faces,
             convex,
             occlusion,
-            sun_band_1au: sun::band_irradiance_1au(ill.band_um, ill.sun_temperature_k),
+            sun_band_1au: ill.sun_1au_w_m2,
             method,
         }
     }
@@ -179,7 +178,26 @@ fn light_model_note(scene: &Scene) -> String {
     };
     // Every material model has wavelength-independent parameters, so the band integral
     // factors out of the face sum (eq12's module doc).
-    format!("{earthshine}; band integral computed once (no material depends on wavelength)")
+    let ill = &scene.illumination;
+    let spectrum = match ill.solar_spectrum {
+        crate::scene::SolarSpectrumChoice::Planck => {
+            format!("a {} K blackbody Sun", ill.sun_temperature_k)
+        }
+        crate::scene::SolarSpectrumChoice::Calspec => "the CALSPEC solar spectrum".to_string(),
+    };
+    let band = match ill.passband {
+        Some(p) => format!(
+            "band {} ({}), the Sun {} mag",
+            p.name, p.description, p.sun_magnitude
+        ),
+        None => format!(
+            "band {}–{} µm, the Sun {} mag",
+            ill.band_um[0], ill.band_um[1], ill.sun_magnitude
+        ),
+    };
+    format!(
+        "{earthshine}; {band}, {spectrum}; band integral computed once (no material depends on wavelength)"
+    )
 }
 
 /// Computes the light curve of a scene.

@@ -4,7 +4,7 @@ use crate::scene::Response;
 use std::fmt::Write;
 
 /// Column names, in order.
-pub const HEADER: &str = "t,irradiance_w_m2,sun_w_m2,earthshine_w_m2,intensity_w_sr,magnitude,magnitude_std,phase_angle_deg,range_m,lit_visible_area_m2,eclipse,earth_blocks_view";
+pub const HEADER: &str = "t,irradiance_w_m2,sun_w_m2,earthshine_w_m2,intensity_w_sr,magnitude,magnitude_1000km,magnitude_standard,magnitude_intrinsic,phase_angle_deg,range_m,lit_visible_area_m2,eclipse,earth_blocks_view";
 
 /// Columns added after [`HEADER`] when the epochs came from a `geometry`.
 pub const GEOMETRY_HEADER: &str = ",azimuth_deg,elevation_deg,sun_elevation_deg,in_earth_shadow";
@@ -33,14 +33,16 @@ pub fn write_csv(response: &Response, out: &mut impl std::io::Write) -> std::io:
         s.clear();
         let _ = write!(
             s,
-            "{},{:e},{:e},{:e},{:e},{},{},{:.6},{:.6e},{:.6e},{:.6},{}",
+            "{},{:e},{:e},{:e},{:e},{},{},{},{},{:.6},{:.6e},{:.6e},{:.6},{}",
             e.t,
             e.irradiance_w_m2,
             e.sun_w_m2,
             e.earthshine_w_m2,
             e.intensity_w_sr,
             opt(e.magnitude),
-            opt(e.magnitude_std),
+            opt(e.magnitude_1000km),
+            opt(e.magnitude_standard),
+            opt(e.magnitude_intrinsic),
             e.phase_angle_deg,
             e.range_m,
             e.lit_visible_area_m2,

@@ -67,13 +67,31 @@ pub enum EarthshineModel {
     Sphere,
 }
 
+/// Which solar spectrum the band is integrated against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SolarSpectrumChoice {
+    /// A blackbody at `sun_temperature_k` (the default).
+    Planck,
+    /// The tabulated CALSPEC solar spectrum (`radiometry::bands::calspec`).
+    Calspec,
+}
+
 /// Illumination settings after validation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Illumination {
-    /// Band [λ1, λ2], µm.
+    /// Band [λ1, λ2], µm: the interval band, or the span of a named band's table.
     pub band_um: [f64; 2],
+    /// A named passband (`illumination.band`), integrated through its response; `None`
+    /// for the interval `band_um`.
+    pub passband: Option<&'static crate::radiometry::bands::Passband>,
     /// Sun blackbody temperature, K.
     pub sun_temperature_k: f64,
+    pub solar_spectrum: SolarSpectrumChoice,
+    /// The Sun's irradiance at 1 AU in the band, W/m² (photon-weighted for a named band:
+    /// `radiometry::bands`): the magnitude zero point's flux.
+    pub sun_1au_w_m2: f64,
+    /// The Sun's apparent magnitude at 1 AU in the band: the magnitude zero point.
+    pub sun_magnitude: f64,
     pub earthshine: EarthshineModel,
     /// Earth's albedo ρ.
     pub earth_albedo: f64,
@@ -83,9 +101,28 @@ impl Default for Illumination {
     fn default() -> Self {
         Illumination {
             band_um: [0.4, 0.7],
+            passband: None,
             sun_temperature_k: 5900.0,
+            solar_spectrum: SolarSpectrumChoice::Planck,
+            sun_1au_w_m2: crate::radiometry::sun::band_irradiance_1au([0.4, 0.7], 5900.0),
+            sun_magnitude: crate::radiometry::magnitude::SUN_MAGNITUDE,
             earthshine: EarthshineModel::Sphere,
             earth_albedo: 0.35,
+        }
+    }
+}
+
+impl Illumination {
+    /// The Sun's irradiance in the band at `distance_m` from it, W/m². An interval band
+    /// under a blackbody Sun is Planck's band integral at that distance, as always; every
+    /// other band scales its 1 AU value by (AU/D)².
+    pub fn sun_irradiance(&self, distance_m: f64) -> f64 {
+        use crate::radiometry::{sun, AU_M};
+        if self.passband.is_none() && self.solar_spectrum == SolarSpectrumChoice::Planck {
+            sun::band_irradiance(self.band_um, self.sun_temperature_k, distance_m)
+        } else {
+            let ratio = AU_M / distance_m;
+            self.sun_1au_w_m2 * ratio * ratio
         }
     }
 }

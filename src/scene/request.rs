@@ -317,14 +317,34 @@ pub struct EpochSpec {
 #[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct IlluminationSpec {
-    /// Spectral band [λ1, λ2] in µm. Default [0.4, 0.7]. The Sun's irradiance in it at 1 AU
-    /// must be at least 1e-200 W/m² (not so only far in the Wien tail of a cold Sun).
+    /// Spectral band [λ1, λ2] in µm, every wavelength in it counted alike. Default
+    /// [0.4, 0.7]. Its magnitudes put the Sun at 1 AU at −26.74 (V-like). The Sun's
+    /// irradiance in it at 1 AU must be at least 1e-200 W/m² (not so only far in the Wien
+    /// tail of a cold Sun). Not with `band`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(min_items = 2, max_items = 2)]
     pub band_um: Option<[f64; 2]>,
-    /// Sun blackbody temperature in K. Default 5900 (the paper's value).
+    /// A standard passband instead of `band_um`, integrated through its tabulated response
+    /// (photon-weighted, as a CCD counts): `V`, `B` (Johnson, Bessell 1990), `R` (Cousins,
+    /// Bessell 1990), `G` (Gaia EDR3), `g`, `r`, `i` (SDSS, Doi et al. 2010; AB). Its
+    /// magnitudes take the Sun's magnitude in that band as zero point: V −26.76 and B
+    /// −26.13 (Willmer 2018, ApJS 236, 47), R −27.13, G −26.89 (Vega), g −26.46, r −26.93,
+    /// i −27.04 (AB), computed from the CALSPEC solar spectrum (docs/physics.md §10).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = "V")]
+    pub band: Option<String>,
+    /// Sun blackbody temperature in K. Default 5900 (the paper's value). Used with
+    /// `solar_spectrum: planck`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sun_temperature_k: Option<f64>,
+    /// The solar spectrum integrated through the band: `planck` (default: a blackbody at
+    /// `sun_temperature_k`) or `calspec` (the tabulated CALSPEC solar reference spectrum,
+    /// Colina, Bohlin & Castelli 1996, 0.1195–2.70 µm; the band must lie within it).
+    /// Magnitudes of wavelength-independent materials do not depend on it: E and the
+    /// Sun's in-band irradiance change alike.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = "planck")]
+    pub solar_spectrum: Option<String>,
     /// `off`, `sphere` (the default: the sunlit Lambertian Earth over its visible cap, with
     /// its distance and phase) or `seed` (the paper's Eq. 3: ρ·E_s as one parallel beam
     /// from the Earth's direction at any distance and Earth phase — to reproduce the

@@ -47,11 +47,25 @@ pub struct EpochResult {
     pub earthshine_w_m2: f64,
     /// Radiant intensity of the object towards the observer, W/sr.
     pub intensity_w_sr: f64,
-    /// Apparent magnitude, band-consistent (−26.74 for the Sun's band irradiance at 1 AU);
-    /// `null` when no light at all reaches the observer.
+    /// Apparent magnitude in the request's band: m = m_sun − 2.5 log10(E / E_sun), E_sun
+    /// the Sun's irradiance at 1 AU in the same band and m_sun its magnitude there (−26.74
+    /// for a `band_um` interval; a named `band` carries its own). `null` when no light at
+    /// all reaches the observer.
     pub magnitude: Option<f64>,
-    /// Magnitude at a standard range of 1000 km; `null` with `magnitude`.
-    pub magnitude_std: Option<f64>,
+    /// Range-normalised magnitude: `magnitude` moved to a range of 1000 km,
+    /// m − 5 log10(R / 1000 km), the phase left as it is. `null` with `magnitude`.
+    /// (Formerly `magnitude_std`.)
+    pub magnitude_1000km: Option<f64>,
+    /// The observers' standard magnitude: at 1000 km and 90° phase, the phase reduced with
+    /// the Lambert sphere's phase law F(g) = ((π − g) cos g + sin g)/π:
+    /// `magnitude_1000km` + 2.5 log10(F(g) / F(90°)). Constant over a light curve of a
+    /// Lambertian sphere. `null` with `magnitude`, or at phase 180° (F = 0).
+    pub magnitude_standard: Option<f64>,
+    /// McCants' intrinsic magnitude: at 1000 km and full phase (0°), the phase reduced with
+    /// the same Lambert sphere law: `magnitude_1000km` + 2.5 log10 F(g)
+    /// (= `magnitude_standard` − 2.5 log10 π, 1.243 mag brighter). `null` with
+    /// `magnitude_standard`.
+    pub magnitude_intrinsic: Option<f64>,
     /// Sun–object–observer angle, degrees.
     pub phase_angle_deg: f64,
     /// Object–observer distance, m.

@@ -374,6 +374,7 @@ fn epoch_result(
         elevation_deg: None,
         sun_elevation_deg: None,
         in_earth_shadow: None,
+        observation: None,
     }
 }
 

@@ -187,7 +187,7 @@ fn light_model_note(scene: &Scene) -> String {
     };
     let band = match ill.passband {
         Some(p) => format!(
-            "band {} ({}), the Sun {} mag",
+            "band {}: {}, the Sun {} mag",
             p.name, p.description, p.sun_magnitude
         ),
         None => format!(
@@ -242,6 +242,35 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
             e.elevation_deg = Some(s.elevation_deg);
             e.sun_elevation_deg = Some(s.sun_elevation_deg);
             e.in_earth_shadow = Some(e.eclipse > 0.0);
+        }
+    }
+    // a telescope's counts, when asked for (validation saw to a named band)
+    if let (Some(obs), Some(band)) = (&scene.observation, scene.illumination.passband) {
+        use crate::radiometry::ccd::photon_rate;
+        let ill = &scene.illumination;
+        let mean = band.mean_wavelength_um();
+        let zero_rate = photon_rate(ill.sun_1au_w_m2 * 10f64.powf(0.4 * ill.sun_magnitude), mean);
+        for (i, e) in epochs.iter_mut().enumerate() {
+            let c = obs.counts(photon_rate(e.irradiance_w_m2, mean), zero_rate, i as u64);
+            let sample_magnitude = match e.magnitude {
+                Some(m) if c.sample_e > 0.0 && c.signal_e > 0.0 => {
+                    Some(m - 2.5 * (c.sample_e / c.signal_e).log10())
+                }
+                _ => None,
+            };
+            e.observation = Some(crate::scene::ObservationResult {
+                signal_e: c.signal_e,
+                sky_e: c.sky_e,
+                dark_e: c.dark_e,
+                pixels: c.pixels,
+                noise_e: c.noise_e,
+                snr: c.snr,
+                signal_adu: c.signal_adu,
+                peak_pixel_e: c.peak_pixel_e,
+                saturated: c.saturated,
+                sample_e: c.sample_e,
+                sample_magnitude,
+            });
         }
     }
     // Images only when asked for: a light curve without them pays nothing.

@@ -145,6 +145,21 @@ impl Passband {
         [r[0].0, r[r.len() - 1].0]
     }
 
+    /// The photon-weighted mean wavelength λ̄ = ∫R λ dλ / ∫R dλ, µm (exact for the
+    /// piecewise-linear R).
+    pub fn mean_wavelength_um(&self) -> f64 {
+        let r = self.response();
+        let (mut int_r, mut int_rl) = (0.0, 0.0);
+        for p in r.windows(2) {
+            let ((l0, r0), (l1, r1)) = (p[0], p[1]);
+            let h = l1 - l0;
+            int_r += 0.5 * h * (r0 + r1);
+            // ∫ of a linear R times λ over [l0, l1], exactly
+            int_rl += h * (r0 * (2.0 * l0 + l1) + r1 * (l0 + 2.0 * l1)) / 6.0;
+        }
+        int_rl / int_r
+    }
+
     /// Quadrature of the photon-weighted band integral: (λ_i, w_i) with
     /// Σ w_i f(λ_i) = ∫ f R (λ/λ̄) dλ, by 4-point Gauss–Legendre on each interval of the
     /// table (R is linear there: exact for f a polynomial of degree ≤ 5 on it, and far

@@ -2,6 +2,7 @@
 //! (Eq. 3 and the sunlit-sphere model), eclipses by the Earth, and magnitudes.
 
 pub mod bands;
+pub mod ccd;
 pub mod earth;
 pub mod eclipse;
 pub mod magnitude;

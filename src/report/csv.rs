@@ -9,6 +9,10 @@ pub const HEADER: &str = "t,irradiance_w_m2,sun_w_m2,earthshine_w_m2,intensity_w
 /// Columns added after [`HEADER`] when the epochs came from a `geometry`.
 pub const GEOMETRY_HEADER: &str = ",azimuth_deg,elevation_deg,sun_elevation_deg,in_earth_shadow";
 
+/// Columns added at the end when the request had an `observation`.
+pub const OBSERVATION_HEADER: &str =
+    ",signal_e,sky_e,noise_e,snr,signal_adu,saturated,sample_e,sample_magnitude";
+
 /// CSV text with a header; an absent magnitude (no light) is an empty cell. A
 /// `geometry` request's curve has the site's view as four more columns.
 pub fn to_csv(response: &Response) -> String {
@@ -25,6 +29,10 @@ pub fn write_csv(response: &Response, out: &mut impl std::io::Write) -> std::io:
     s.push_str(HEADER);
     if sky {
         s.push_str(GEOMETRY_HEADER);
+    }
+    let observed = response.epochs.iter().any(|e| e.observation.is_some());
+    if observed {
+        s.push_str(OBSERVATION_HEADER);
     }
     s.push('\n');
     out.write_all(s.as_bytes())?;
@@ -60,6 +68,24 @@ pub fn write_csv(response: &Response, out: &mut impl std::io::Write) -> std::io:
                     .map(|b| u8::from(b).to_string())
                     .unwrap_or_default()
             );
+        }
+        if observed {
+            if let Some(o) = &e.observation {
+                let _ = write!(
+                    s,
+                    ",{:e},{:e},{:e},{:.6e},{:e},{},{:e},{}",
+                    o.signal_e,
+                    o.sky_e,
+                    o.noise_e,
+                    o.snr,
+                    o.signal_adu,
+                    u8::from(o.saturated),
+                    o.sample_e,
+                    opt(o.sample_magnitude)
+                );
+            } else {
+                s.push_str(",,,,,,,,");
+            }
         }
         s.push('\n');
         out.write_all(s.as_bytes())?;

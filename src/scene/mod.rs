@@ -12,7 +12,7 @@ pub mod validate;
 
 pub use error::{Limits, ValidationError};
 pub use request::Request;
-pub use response::{EpochResult, MaterialAlbedo, Response, Summary};
+pub use response::{EpochResult, MaterialAlbedo, ObservationResult, Response, Summary};
 
 use crate::brdf::Brdf;
 use crate::geometry::Mesh;
@@ -188,6 +188,8 @@ pub struct Scene {
     pub sky: Vec<Sky>,
     /// Notes for the response's `warnings` (e.g. Earth orientation taken as zero).
     pub warnings: Vec<String>,
+    /// A telescope's counts per epoch, when the request asked for them.
+    pub observation: Option<crate::radiometry::ccd::Observation>,
 }
 
 /// How rendered radiance maps to 8-bit grey levels.

@@ -52,6 +52,70 @@ pub struct Request {
     /// `thumbnails` of the response. Absent: no images (and no cost).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thumbnails: Option<ThumbnailSpec>,
+    /// A telescope observing the object: per epoch its signal, sky and noise electrons in
+    /// a photometric aperture, SNR, ADU, saturation and a noisy sample (the CCD equation,
+    /// docs/physics.md §10a). Needs a named `illumination.band`. Absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observation: Option<ObservationSpec>,
+}
+
+/// A telescope, its detector and the sky.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ObservationSpec {
+    /// Aperture diameter, m (0 < D ≤ 50).
+    #[schema(example = 0.5)]
+    pub aperture_m: f64,
+    /// Exposure time, s (0 < t ≤ 1e5).
+    #[schema(example = 1.0)]
+    pub exposure_s: f64,
+    /// Central obstruction as a fraction of the diameter, 0 to 0.99. Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstruction: Option<f64>,
+    /// Detector quantum efficiency in the band, 0 to 1 (exclusive of 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quantum_efficiency: Option<f64>,
+    /// Optics and filter throughput beyond the band's own response, 0 to 1 (exclusive of
+    /// 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub throughput: Option<f64>,
+    /// Pixel scale, arcsec per pixel (> 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pixel_scale_arcsec: Option<f64>,
+    /// Seeing: FWHM of the Gaussian star image, arcsec (> 0). Default 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seeing_fwhm_arcsec: Option<f64>,
+    /// Radius of the circular photometric aperture, arcsec (> 0). Default the seeing
+    /// FWHM (which holds 93.75 % of a Gaussian image).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aperture_radius_arcsec: Option<f64>,
+    /// Read noise, e⁻ rms per pixel (≥ 0). Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub read_noise_e: Option<f64>,
+    /// Dark current, e⁻/s per pixel (≥ 0). Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dark_e_per_s: Option<f64>,
+    /// Gain, e⁻ per ADU (> 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gain_e_per_adu: Option<f64>,
+    /// Full well, e⁻ (> 0): the brightest pixel at or above it is saturated. Default:
+    /// none (never saturated).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub full_well_e: Option<f64>,
+    /// Sky brightness in the band, mag/arcsec², as measured at the site (−10 to 40).
+    /// Default: no sky.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 21.0)]
+    pub sky_mag_per_arcsec2: Option<f64>,
+    /// Airmass (1 to 40). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub airmass: Option<f64>,
+    /// Atmospheric extinction, mag per airmass (0 to 10). Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extinction_mag_per_airmass: Option<f64>,
+    /// Seed of the noisy samples: the same seed gives the same samples. Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
 }
 
 /// Which epochs to render, and how. `every` and `epochs` may be combined (their union

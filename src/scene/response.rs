@@ -94,6 +94,39 @@ pub struct EpochResult {
     /// (penumbra or umbra; `eclipse` says how much).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub in_earth_shadow: Option<bool>,
+    /// Requests with an `observation` only: the telescope's counts.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observation: Option<ObservationResult>,
+}
+
+/// A telescope's counts of the object at one epoch (the CCD equation, docs/physics.md
+/// §10a). S = Φ·10^(−0.4kX)·A·t·q·τ·f_ap; N = √(S + sky + dark + n_pix·σ_R²).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema, PartialEq)]
+pub struct ObservationResult {
+    /// The object's electrons in the photometric aperture, S.
+    pub signal_e: f64,
+    /// The sky's electrons in the aperture.
+    pub sky_e: f64,
+    /// Dark-current electrons in the aperture.
+    pub dark_e: f64,
+    /// Pixels in the aperture, π r² / s².
+    pub pixels: f64,
+    /// Noise in the aperture, e⁻: √(S + sky + dark + pixels·read_noise²).
+    pub noise_e: f64,
+    /// Signal-to-noise ratio S / N (0 when there is neither signal nor noise).
+    pub snr: f64,
+    /// The signal in ADU, S / gain.
+    pub signal_adu: f64,
+    /// Electrons on the brightest pixel (the image centred on it, plus sky and dark).
+    pub peak_pixel_e: f64,
+    /// The brightest pixel reaches the full well.
+    pub saturated: bool,
+    /// A noisy measurement of S: Poisson(S + sky + dark) plus normal read noise, less the
+    /// expected sky and dark, drawn with the request's seed.
+    pub sample_e: f64,
+    /// The sample as a magnitude in the band, m − 2.5 log10(sample / S); `null` when the
+    /// sample is not positive or there is no magnitude.
+    pub sample_magnitude: Option<f64>,
 }
 
 /// How the light curve was computed.

@@ -10,6 +10,7 @@
 //! | `object.mesh` | `mesh.rs` |
 //! | `illumination` | `illumination.rs` |
 //! | `epochs` or `geometry` (built in [`super::geometry`]) | `epochs.rs` |
+//! | `observation` | `observation.rs` |
 //! | `tolerance`, `method`, `image_*`, `centroid_subdivisions` | `fidelity.rs` |
 //! | `thumbnails` | `thumbnails.rs` |
 //! | the work it asks for, against the [`Limits`] | `work.rs` |
@@ -22,6 +23,7 @@ mod illumination;
 mod json;
 mod materials;
 mod mesh;
+mod observation;
 mod thumbnails;
 mod values;
 mod work;
@@ -45,6 +47,11 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         sky,
         warnings,
     } = epochs::epochs(req, limits, &mesh, &illumination)?;
+    let observation = req
+        .observation
+        .as_ref()
+        .map(|o| observation::observation(o, &illumination))
+        .transpose()?;
     let tolerance = fidelity::tolerance(req)?;
     let method = fidelity::method(req)?;
     let (image_size, image_samples, centroid_subdivisions) =
@@ -75,5 +82,6 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         clip_shadows: true,
         sky,
         warnings,
+        observation,
     })
 }

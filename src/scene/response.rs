@@ -3,8 +3,10 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-/// The light curve and how it was computed.
+/// The light curve and how it was computed. (Named `LightCurve` in the OpenAPI spec: a
+/// schema called `Response` collides with the generated Python client's own `Response`.)
 #[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[schema(as = LightCurve)]
 pub struct Response {
     pub epochs: Vec<EpochResult>,
     pub summary: Summary,

@@ -348,23 +348,17 @@ fn epoch_result(
         .is_some_and(|e| crate::radiometry::earth::hides_observer(e, epoch.observer));
     let seen = if blocked { 0.0 } else { 1.0 };
     let irradiance = seen * intensity / r2;
-    let mag = magnitude::apparent(
-        irradiance,
-        p.sun_band_1au,
-        p.scene.illumination.sun_magnitude,
-    );
     let phase = angle_between(epoch.sun, v);
-    let m_1000km = magnitude::at_1000km(mag, range);
-    EpochResult {
+    let mut e = EpochResult {
         t: epoch.t,
         irradiance_w_m2: irradiance,
         sun_w_m2: seen * sun_sum / r2,
         earthshine_w_m2: seen * earth_sum / r2,
         intensity_w_sr: intensity,
-        magnitude: mag,
-        magnitude_1000km: m_1000km,
-        magnitude_standard: magnitude::standard(m_1000km, phase),
-        magnitude_intrinsic: magnitude::intrinsic(m_1000km, phase),
+        magnitude: None,
+        magnitude_1000km: None,
+        magnitude_standard: None,
+        magnitude_intrinsic: None,
         phase_angle_deg: phase.to_degrees(),
         range_m: range,
         lit_visible_area_m2: lit_visible_area,
@@ -375,7 +369,22 @@ fn epoch_result(
         sun_elevation_deg: None,
         in_earth_shadow: None,
         observation: None,
-    }
+    };
+    set_magnitudes(
+        &mut e,
+        phase,
+        p.sun_band_1au,
+        p.scene.illumination.sun_magnitude,
+    );
+    e
+}
+
+/// An epoch's magnitudes from its irradiance, range and phase (rad) (docs/physics.md §10).
+pub fn set_magnitudes(e: &mut EpochResult, phase: f64, sun_band_1au: f64, sun_magnitude: f64) {
+    e.magnitude = magnitude::apparent(e.irradiance_w_m2, sun_band_1au, sun_magnitude);
+    e.magnitude_1000km = magnitude::at_1000km(e.magnitude, e.range_m);
+    e.magnitude_standard = magnitude::standard(e.magnitude_1000km, phase);
+    e.magnitude_intrinsic = magnitude::intrinsic(e.magnitude_1000km, phase);
 }
 
 /// Running sums of one epoch: W/sr from the Sun and from earthshine, and the seen and

@@ -92,6 +92,9 @@ pub struct Illumination {
     pub sun_1au_w_m2: f64,
     /// The Sun's apparent magnitude at 1 AU in the band: the magnitude zero point.
     pub sun_magnitude: f64,
+    /// The share of the band's sunlight this scene computes: 1, or one wavelength bin's
+    /// (`SpectralBin::share`). Scales the Sun, not the zero point.
+    pub sun_share: f64,
     pub earthshine: EarthshineModel,
     /// Earth's albedo ρ.
     pub earth_albedo: f64,
@@ -106,6 +109,7 @@ impl Default for Illumination {
             solar_spectrum: SolarSpectrumChoice::Planck,
             sun_1au_w_m2: crate::radiometry::sun::band_irradiance_1au([0.4, 0.7], 5900.0),
             sun_magnitude: crate::radiometry::magnitude::SUN_MAGNITUDE,
+            sun_share: 1.0,
             earthshine: EarthshineModel::Sphere,
             earth_albedo: 0.35,
         }
@@ -118,11 +122,17 @@ impl Illumination {
     /// other band scales its 1 AU value by (AU/D)².
     pub fn sun_irradiance(&self, distance_m: f64) -> f64 {
         use crate::radiometry::{sun, AU_M};
-        if self.passband.is_none() && self.solar_spectrum == SolarSpectrumChoice::Planck {
+        let full = if self.passband.is_none() && self.solar_spectrum == SolarSpectrumChoice::Planck
+        {
             sun::band_irradiance(self.band_um, self.sun_temperature_k, distance_m)
         } else {
             let ratio = AU_M / distance_m;
             self.sun_1au_w_m2 * ratio * ratio
+        };
+        if self.sun_share == 1.0 {
+            full
+        } else {
+            full * self.sun_share
         }
     }
 }
@@ -190,6 +200,20 @@ pub struct Scene {
     pub warnings: Vec<String>,
     /// A telescope's counts per epoch, when the request asked for them.
     pub observation: Option<crate::radiometry::ccd::Observation>,
+    /// The band in wavelength bins, each with its materials, when a material depends on
+    /// wavelength (empty otherwise: the band integral factors out of the face sum).
+    pub spectral: Vec<SpectralBin>,
+}
+
+/// One wavelength bin of the band: its share of the Sun's in-band irradiance and every
+/// material at its mean wavelength.
+#[derive(Debug, Clone)]
+pub struct SpectralBin {
+    /// The bin's mean wavelength (weighted by the Sun's spectrum and the band), µm.
+    pub wavelength_um: f64,
+    /// Its share of the Sun's in-band irradiance (the bins' shares sum to 1).
+    pub share: f64,
+    pub materials: Vec<Material>,
 }
 
 /// How rendered radiance maps to 8-bit grey levels.

@@ -306,6 +306,29 @@ pub struct MaterialObject {
     /// Thin sheet lit and seen from both sides (solar panels). Default false.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub two_sided: Option<bool>,
+    /// Wavelength-dependent `n`, `k` or `albedo` as a short table (instead of the
+    /// number): the band integral then runs per wavelength (docs/physics.md §8).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spectral: Option<SpectralSpec>,
+}
+
+/// A material's parameters against wavelength: linear between the points, constant
+/// beyond the first and last.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralSpec {
+    /// Wavelengths, µm, increasing, 2 to 64 of them.
+    #[schema(example = json!([0.4, 0.55, 0.7]))]
+    pub wavelength_um: Vec<f64>,
+    /// Real part of the refractive index at each wavelength.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n: Option<Vec<f64>>,
+    /// Imaginary part of the refractive index at each wavelength.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub k: Option<Vec<f64>>,
+    /// Lambertian albedo at each wavelength.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub albedo: Option<Vec<f64>>,
 }
 
 /// How a rough conductor's Smith term combines the light's and the view's masking.

@@ -9,6 +9,7 @@
 //! | `object.materials` | `materials.rs` |
 //! | `object.mesh` | `mesh.rs` |
 //! | `illumination` | `illumination.rs` |
+//! | materials' `spectral` tables, the band's wavelength bins | `spectral.rs` |
 //! | `epochs` or `geometry` (built in [`super::geometry`]) | `epochs.rs` |
 //! | `observation` | `observation.rs` |
 //! | `tolerance`, `method`, `image_*`, `centroid_subdivisions` | `fidelity.rs` |
@@ -24,6 +25,7 @@ mod json;
 mod materials;
 mod mesh;
 mod observation;
+mod spectral;
 mod thumbnails;
 mod values;
 mod work;
@@ -42,6 +44,7 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
     let materials = materials::materials(req)?;
     let mesh = mesh::mesh(&req.object.mesh, &materials, limits)?;
     let illumination = illumination::illumination(req)?;
+    let (materials, spectral) = spectral::bins(req, materials, &illumination)?;
     let epochs::Epochs {
         epochs,
         sky,
@@ -83,5 +86,6 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         sky,
         warnings,
         observation,
+        spectral,
     })
 }

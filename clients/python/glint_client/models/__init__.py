@@ -42,6 +42,7 @@ from .scene_summary import SceneSummary
 from .shadowing_spec import ShadowingSpec
 from .site_spec import SiteSpec
 from .solver_report import SolverReport
+from .spectral_spec import SpectralSpec
 from .summary import Summary
 from .thumbnail import Thumbnail
 from .thumbnail_spec import ThumbnailSpec
@@ -91,6 +92,7 @@ __all__ = (
     "ShadowingSpec",
     "SiteSpec",
     "SolverReport",
+    "SpectralSpec",
     "Summary",
     "Thumbnail",
     "ThumbnailSpec",

@@ -12,6 +12,8 @@ from ..models.shadowing_spec import ShadowingSpec
 from ..types import UNSET, Unset
 from typing import cast
 
+if TYPE_CHECKING:
+  from ..models.spectral_spec import SpectralSpec
 
 
 
@@ -59,6 +61,7 @@ class MaterialObject:
                 its plane; a face whose normal is within 8.1° of it takes instead a fixed direction
                 perpendicular to it. Default [1, 0, 0], the body's x axis.
             two_sided (bool | None | Unset): Thin sheet lit and seen from both sides (solar panels). Default false.
+            spectral (None | SpectralSpec | Unset):
      """
 
     name: str
@@ -79,12 +82,14 @@ class MaterialObject:
     nv: float | None | Unset = UNSET
     tangent: list[float] | None | Unset = UNSET
     two_sided: bool | None | Unset = UNSET
+    spectral: None | SpectralSpec | Unset = UNSET
 
 
 
 
 
     def to_dict(self) -> dict[str, Any]:
+        from ..models.spectral_spec import SpectralSpec # noqa: PLC0415
         name = self.name
 
         model: None | str | Unset
@@ -195,6 +200,14 @@ class MaterialObject:
         else:
             two_sided = self.two_sided
 
+        spectral: dict[str, Any] | None | Unset
+        if isinstance(self.spectral, Unset):
+            spectral = UNSET
+        elif isinstance(self.spectral, SpectralSpec):
+            spectral = self.spectral.to_dict()
+        else:
+            spectral = self.spectral
+
 
         field_dict: dict[str, Any] = {}
 
@@ -235,6 +248,8 @@ class MaterialObject:
             field_dict["tangent"] = tangent
         if two_sided is not UNSET:
             field_dict["two_sided"] = two_sided
+        if spectral is not UNSET:
+            field_dict["spectral"] = spectral
 
         return field_dict
 
@@ -242,6 +257,7 @@ class MaterialObject:
 
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
+        from ..models.spectral_spec import SpectralSpec # noqa: PLC0415
         d = dict(src_dict)
         name = d.pop("name")
 
@@ -433,6 +449,26 @@ class MaterialObject:
         two_sided = _parse_two_sided(d.pop("two_sided", UNSET))
 
 
+        def _parse_spectral(data: object) -> None | SpectralSpec | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            try:
+                if not isinstance(data, dict):
+                    raise TypeError()
+                spectral_type_0 = SpectralSpec.from_dict(data)
+
+
+
+                return spectral_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            return cast(None | SpectralSpec | Unset, data)
+
+        spectral = _parse_spectral(d.pop("spectral", UNSET))
+
+
         material_object = cls(
             name=name,
             model=model,
@@ -452,6 +488,7 @@ class MaterialObject:
             nv=nv,
             tangent=tangent,
             two_sided=two_sided,
+            spectral=spectral,
         )
 
         return material_object

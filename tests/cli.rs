@@ -36,14 +36,16 @@ fn epochs_in(path: &str) -> usize {
 }
 
 /// The per-epoch fields, in the response's order.
-const COLUMNS: [&str; 12] = [
+const COLUMNS: [&str; 14] = [
     "t",
     "irradiance_w_m2",
     "sun_w_m2",
     "earthshine_w_m2",
     "intensity_w_sr",
     "magnitude",
-    "magnitude_std",
+    "magnitude_1000km",
+    "magnitude_standard",
+    "magnitude_intrinsic",
     "phase_angle_deg",
     "range_m",
     "lit_visible_area_m2",
@@ -269,9 +271,9 @@ fn simulate_a_pass_from_a_tle() {
     assert!(!rows.is_empty());
     for row in rows {
         let cells: Vec<&str> = row.split(',').collect();
-        assert_eq!(cells.len(), 16);
-        let el: f64 = cells[13].parse().unwrap();
-        let sun_el: f64 = cells[14].parse().unwrap();
+        assert_eq!(cells.len(), COLUMNS.len() + 4);
+        let el: f64 = cells[COLUMNS.len() + 1].parse().unwrap();
+        let sun_el: f64 = cells[COLUMNS.len() + 2].parse().unwrap();
         assert!(el >= 10.0 && sun_el <= -6.0, "{row}");
     }
 }

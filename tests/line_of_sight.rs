@@ -40,7 +40,9 @@ fn an_earth_between_object_and_observer_hides_the_object() {
     assert_eq!(hidden.sun_w_m2, 0.0);
     assert_eq!(hidden.earthshine_w_m2, 0.0);
     assert_eq!(hidden.magnitude, None);
-    assert_eq!(hidden.magnitude_std, None);
+    assert_eq!(hidden.magnitude_1000km, None);
+    assert_eq!(hidden.magnitude_standard, None);
+    assert_eq!(hidden.magnitude_intrinsic, None);
     // the object's own radiant intensity is unchanged: only its path to the observer is cut
     assert_eq!(hidden.intensity_w_sr, clear.intensity_w_sr);
 }

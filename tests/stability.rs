@@ -297,7 +297,7 @@ fn faint_light_has_a_magnitude_and_no_light_is_null() {
     let json: serde_json::Value =
         serde_json::from_str(&serde_json::to_string(&r).unwrap()).unwrap();
     assert!(
-        json["epochs"][0]["magnitude"].is_null() && json["epochs"][0]["magnitude_std"].is_null()
+        json["epochs"][0]["magnitude"].is_null() && json["epochs"][0]["magnitude_1000km"].is_null()
     );
     assert_eq!(json["epochs"][0]["irradiance_w_m2"], 0.0);
 }
@@ -308,7 +308,9 @@ fn check_json(v: &serde_json::Value, path: &str) {
     match v {
         serde_json::Value::Null => assert!(
             path.ends_with(".magnitude")
-                || path.ends_with(".magnitude_std")
+                || path.ends_with(".magnitude_1000km")
+                || path.ends_with(".magnitude_standard")
+                || path.ends_with(".magnitude_intrinsic")
                 || path.ends_with(".thumbnails"),
             "null at {path} (a NaN or infinity?)"
         ),

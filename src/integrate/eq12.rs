@@ -61,8 +61,7 @@ pub struct EpochLight {
 impl EpochLight {
     pub fn at(ill: &Illumination, epoch: &Epoch) -> EpochLight {
         let l = epoch.sun;
-        let es_full =
-            sun::band_irradiance(ill.band_um, ill.sun_temperature_k, epoch.sun_distance_m);
+        let es_full = ill.sun_irradiance(epoch.sun_distance_m);
         let (hidden, penumbra, earthshine) = match epoch.earth {
             None => (0.0, None, earth::Earthshine::default()),
             Some(e) => {
@@ -349,16 +348,18 @@ fn epoch_result(
         .is_some_and(|e| crate::radiometry::earth::hides_observer(e, epoch.observer));
     let seen = if blocked { 0.0 } else { 1.0 };
     let irradiance = seen * intensity / r2;
-    let mag = magnitude::apparent(irradiance, p.sun_band_1au);
-    EpochResult {
+    let phase = angle_between(epoch.sun, v);
+    let mut e = EpochResult {
         t: epoch.t,
         irradiance_w_m2: irradiance,
         sun_w_m2: seen * sun_sum / r2,
         earthshine_w_m2: seen * earth_sum / r2,
         intensity_w_sr: intensity,
-        magnitude: mag,
-        magnitude_std: magnitude::standardised(mag, range),
-        phase_angle_deg: angle_between(epoch.sun, v).to_degrees(),
+        magnitude: None,
+        magnitude_1000km: None,
+        magnitude_standard: None,
+        magnitude_intrinsic: None,
+        phase_angle_deg: phase.to_degrees(),
         range_m: range,
         lit_visible_area_m2: lit_visible_area,
         eclipse: light.eclipse,
@@ -367,7 +368,23 @@ fn epoch_result(
         elevation_deg: None,
         sun_elevation_deg: None,
         in_earth_shadow: None,
-    }
+        observation: None,
+    };
+    set_magnitudes(
+        &mut e,
+        phase,
+        p.sun_band_1au,
+        p.scene.illumination.sun_magnitude,
+    );
+    e
+}
+
+/// An epoch's magnitudes from its irradiance, range and phase (rad) (docs/physics.md §10).
+pub fn set_magnitudes(e: &mut EpochResult, phase: f64, sun_band_1au: f64, sun_magnitude: f64) {
+    e.magnitude = magnitude::apparent(e.irradiance_w_m2, sun_band_1au, sun_magnitude);
+    e.magnitude_1000km = magnitude::at_1000km(e.magnitude, e.range_m);
+    e.magnitude_standard = magnitude::standard(e.magnitude_1000km, phase);
+    e.magnitude_intrinsic = magnitude::intrinsic(e.magnitude_1000km, phase);
 }
 
 /// Running sums of one epoch: W/sr from the Sun and from earthshine, and the seen and

@@ -13,7 +13,6 @@ pub mod silhouettes;
 pub mod visibility;
 
 use crate::geometry::{convex, Faces};
-use crate::radiometry::sun;
 use crate::scene::{EpochResult, MaterialAlbedo, Method, Response, Scene, Summary};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -158,7 +157,7 @@ impl<'a> Prepared<'a> {
             faces,
             convex,
             occlusion,
-            sun_band_1au: sun::band_irradiance_1au(ill.band_um, ill.sun_temperature_k),
+            sun_band_1au: ill.sun_1au_w_m2,
             method,
         }
     }
@@ -179,7 +178,26 @@ fn light_model_note(scene: &Scene) -> String {
     };
     // Every material model has wavelength-independent parameters, so the band integral
     // factors out of the face sum (eq12's module doc).
-    format!("{earthshine}; band integral computed once (no material depends on wavelength)")
+    let ill = &scene.illumination;
+    let spectrum = match ill.solar_spectrum {
+        crate::scene::SolarSpectrumChoice::Planck => {
+            format!("a {} K blackbody Sun", ill.sun_temperature_k)
+        }
+        crate::scene::SolarSpectrumChoice::Calspec => "the CALSPEC solar spectrum".to_string(),
+    };
+    let band = match ill.passband {
+        Some(p) => format!(
+            "band {}: {}, the Sun {} mag",
+            p.name, p.description, p.sun_magnitude
+        ),
+        None => format!(
+            "band {}–{} µm, the Sun {} mag",
+            ill.band_um[0], ill.band_um[1], ill.sun_magnitude
+        ),
+    };
+    format!(
+        "{earthshine}; {band}, {spectrum}; band integral computed once (no material depends on wavelength)"
+    )
 }
 
 /// Computes the light curve of a scene.
@@ -189,8 +207,117 @@ pub fn simulate(scene: &Scene) -> Response {
 
 /// Computes the light curve, reporting progress and honouring cancellation.
 pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
+    let bins = scene.spectral.len().max(1);
+    progress
+        .total
+        .store(scene.epochs.len() * bins, Ordering::Relaxed);
+    if scene.spectral.is_empty() {
+        simulate_counted(scene, progress)
+    } else {
+        simulate_spectral(scene, progress)
+    }
+}
+
+/// A scene whose materials depend on wavelength: the light curve of each wavelength bin
+/// (its materials, its share of the Sun), summed, the magnitudes taken from the sum
+/// (docs/physics.md §8).
+fn simulate_spectral(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
     let start = Instant::now();
-    progress.total.store(scene.epochs.len(), Ordering::Relaxed);
+    let base = Scene {
+        spectral: Vec::new(),
+        observation: None,
+        thumbnails: None,
+        ..scene.clone()
+    };
+    let mut total: Option<Response> = None;
+    for bin in &scene.spectral {
+        let mut s = base.clone();
+        s.materials = bin.materials.clone();
+        s.illumination.sun_share = bin.share;
+        let r = simulate_counted(&s, progress)?;
+        match &mut total {
+            None => total = Some(r),
+            Some(t) => {
+                for (a, b) in t.epochs.iter_mut().zip(&r.epochs) {
+                    a.irradiance_w_m2 += b.irradiance_w_m2;
+                    a.sun_w_m2 += b.sun_w_m2;
+                    a.earthshine_w_m2 += b.earthshine_w_m2;
+                    a.intensity_w_sr += b.intensity_w_sr;
+                }
+                t.summary.rays += r.summary.rays;
+            }
+        }
+    }
+    let mut r = total.expect("at least one bin");
+    let ill = &scene.illumination;
+    for e in &mut r.epochs {
+        let phase = e.phase_angle_deg.to_radians();
+        eq12::set_magnitudes(e, phase, ill.sun_1au_w_m2, ill.sun_magnitude);
+    }
+    observe(scene, &mut r.epochs);
+    if let Some(spec) = &scene.thumbnails {
+        // rendered with each material at the bins' mean wavelength
+        let mut grey = base.clone();
+        grey.materials = scene.materials.clone();
+        r.thumbnails = Some(
+            crate::render::Renderer::new(&grey)
+                .thumbnails_until(spec, &|| progress.is_cancelled())
+                .ok_or(Cancelled)?,
+        );
+    }
+    let (materials, mut warnings) = material_albedos(scene);
+    warnings.extend(scene.warnings.iter().cloned());
+    r.summary.materials = materials;
+    r.warnings = warnings;
+    r.summary.elapsed_ms = start.elapsed().as_secs_f64() * 1e3;
+    r.summary.method = format!(
+        "{}; per wavelength: {} bins of the band, each material at each bin's mean wavelength",
+        r.summary.method.replace(
+            "; band integral computed once (no material depends on wavelength)",
+            ""
+        ),
+        scene.spectral.len()
+    );
+    Ok(r)
+}
+
+/// A telescope's counts on each epoch, when the scene asks for them (validation saw to a
+/// named band).
+fn observe(scene: &Scene, epochs: &mut [EpochResult]) {
+    let (Some(obs), Some(band)) = (&scene.observation, scene.illumination.passband) else {
+        return;
+    };
+    use crate::radiometry::ccd::photon_rate;
+    let ill = &scene.illumination;
+    let mean = band.mean_wavelength_um();
+    let zero_rate = photon_rate(ill.sun_1au_w_m2 * 10f64.powf(0.4 * ill.sun_magnitude), mean);
+    for (i, e) in epochs.iter_mut().enumerate() {
+        let c = obs.counts(photon_rate(e.irradiance_w_m2, mean), zero_rate, i as u64);
+        let sample_magnitude = match e.magnitude {
+            Some(m) if c.sample_e > 0.0 && c.signal_e > 0.0 => {
+                Some(m - 2.5 * (c.sample_e / c.signal_e).log10())
+            }
+            _ => None,
+        };
+        e.observation = Some(crate::scene::ObservationResult {
+            signal_e: c.signal_e,
+            sky_e: c.sky_e,
+            dark_e: c.dark_e,
+            pixels: c.pixels,
+            noise_e: c.noise_e,
+            snr: c.snr,
+            signal_adu: c.signal_adu,
+            peak_pixel_e: c.peak_pixel_e,
+            saturated: c.saturated,
+            sample_e: c.sample_e,
+            sample_magnitude,
+        });
+    }
+}
+
+/// [`simulate_with`] for one scene, progress counted but its total left as it is.
+fn simulate_counted(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
+    let start = Instant::now();
     // `centroid` with subdivisions samples a refined copy of the mesh
     let refined = methods::refined_for_centroid(scene);
     let scene = refined.as_ref().unwrap_or(scene);
@@ -226,6 +353,7 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
             e.in_earth_shadow = Some(e.eclipse > 0.0);
         }
     }
+    observe(scene, &mut epochs);
     // Images only when asked for: a light curve without them pays nothing.
     let thumbnails = match &scene.thumbnails {
         None => None,

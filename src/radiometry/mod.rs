@@ -1,6 +1,8 @@
 //! Illumination and its measures: the Sun's band irradiance (Eqs. 1–2), earthshine
 //! (Eq. 3 and the sunlit-sphere model), eclipses by the Earth, and magnitudes.
 
+pub mod bands;
+pub mod ccd;
 pub mod earth;
 pub mod eclipse;
 pub mod magnitude;

@@ -12,7 +12,7 @@ pub mod validate;
 
 pub use error::{Limits, ValidationError};
 pub use request::Request;
-pub use response::{EpochResult, MaterialAlbedo, Response, Summary};
+pub use response::{EpochResult, MaterialAlbedo, ObservationResult, Response, Summary};
 
 use crate::brdf::Brdf;
 use crate::geometry::Mesh;
@@ -67,13 +67,34 @@ pub enum EarthshineModel {
     Sphere,
 }
 
+/// Which solar spectrum the band is integrated against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SolarSpectrumChoice {
+    /// A blackbody at `sun_temperature_k` (the default).
+    Planck,
+    /// The tabulated CALSPEC solar spectrum (`radiometry::bands::calspec`).
+    Calspec,
+}
+
 /// Illumination settings after validation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Illumination {
-    /// Band [λ1, λ2], µm.
+    /// Band [λ1, λ2], µm: the interval band, or the span of a named band's table.
     pub band_um: [f64; 2],
+    /// A named passband (`illumination.band`), integrated through its response; `None`
+    /// for the interval `band_um`.
+    pub passband: Option<&'static crate::radiometry::bands::Passband>,
     /// Sun blackbody temperature, K.
     pub sun_temperature_k: f64,
+    pub solar_spectrum: SolarSpectrumChoice,
+    /// The Sun's irradiance at 1 AU in the band, W/m² (photon-weighted for a named band:
+    /// `radiometry::bands`): the magnitude zero point's flux.
+    pub sun_1au_w_m2: f64,
+    /// The Sun's apparent magnitude at 1 AU in the band: the magnitude zero point.
+    pub sun_magnitude: f64,
+    /// The share of the band's sunlight this scene computes: 1, or one wavelength bin's
+    /// (`SpectralBin::share`). Scales the Sun, not the zero point.
+    pub sun_share: f64,
     pub earthshine: EarthshineModel,
     /// Earth's albedo ρ.
     pub earth_albedo: f64,
@@ -83,9 +104,35 @@ impl Default for Illumination {
     fn default() -> Self {
         Illumination {
             band_um: [0.4, 0.7],
+            passband: None,
             sun_temperature_k: 5900.0,
+            solar_spectrum: SolarSpectrumChoice::Planck,
+            sun_1au_w_m2: crate::radiometry::sun::band_irradiance_1au([0.4, 0.7], 5900.0),
+            sun_magnitude: crate::radiometry::magnitude::SUN_MAGNITUDE,
+            sun_share: 1.0,
             earthshine: EarthshineModel::Sphere,
             earth_albedo: 0.35,
+        }
+    }
+}
+
+impl Illumination {
+    /// The Sun's irradiance in the band at `distance_m` from it, W/m². An interval band
+    /// under a blackbody Sun is Planck's band integral at that distance, as always; every
+    /// other band scales its 1 AU value by (AU/D)².
+    pub fn sun_irradiance(&self, distance_m: f64) -> f64 {
+        use crate::radiometry::{sun, AU_M};
+        let full = if self.passband.is_none() && self.solar_spectrum == SolarSpectrumChoice::Planck
+        {
+            sun::band_irradiance(self.band_um, self.sun_temperature_k, distance_m)
+        } else {
+            let ratio = AU_M / distance_m;
+            self.sun_1au_w_m2 * ratio * ratio
+        };
+        if self.sun_share == 1.0 {
+            full
+        } else {
+            full * self.sun_share
         }
     }
 }
@@ -151,6 +198,22 @@ pub struct Scene {
     pub sky: Vec<Sky>,
     /// Notes for the response's `warnings` (e.g. Earth orientation taken as zero).
     pub warnings: Vec<String>,
+    /// A telescope's counts per epoch, when the request asked for them.
+    pub observation: Option<crate::radiometry::ccd::Observation>,
+    /// The band in wavelength bins, each with its materials, when a material depends on
+    /// wavelength (empty otherwise: the band integral factors out of the face sum).
+    pub spectral: Vec<SpectralBin>,
+}
+
+/// One wavelength bin of the band: its share of the Sun's in-band irradiance and every
+/// material at its mean wavelength.
+#[derive(Debug, Clone)]
+pub struct SpectralBin {
+    /// The bin's mean wavelength (weighted by the Sun's spectrum and the band), µm.
+    pub wavelength_um: f64,
+    /// Its share of the Sun's in-band irradiance (the bins' shares sum to 1).
+    pub share: f64,
+    pub materials: Vec<Material>,
 }
 
 /// How rendered radiance maps to 8-bit grey levels.

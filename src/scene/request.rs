@@ -52,6 +52,70 @@ pub struct Request {
     /// `thumbnails` of the response. Absent: no images (and no cost).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thumbnails: Option<ThumbnailSpec>,
+    /// A telescope observing the object: per epoch its signal, sky and noise electrons in
+    /// a photometric aperture, SNR, ADU, saturation and a noisy sample (the CCD equation,
+    /// docs/physics.md §10a). Needs a named `illumination.band`. Absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observation: Option<ObservationSpec>,
+}
+
+/// A telescope, its detector and the sky.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ObservationSpec {
+    /// Aperture diameter, m (0 < D ≤ 50).
+    #[schema(example = 0.5)]
+    pub aperture_m: f64,
+    /// Exposure time, s (0 < t ≤ 1e5).
+    #[schema(example = 1.0)]
+    pub exposure_s: f64,
+    /// Central obstruction as a fraction of the diameter, 0 to 0.99. Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstruction: Option<f64>,
+    /// Detector quantum efficiency in the band, 0 to 1 (exclusive of 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quantum_efficiency: Option<f64>,
+    /// Optics and filter throughput beyond the band's own response, 0 to 1 (exclusive of
+    /// 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub throughput: Option<f64>,
+    /// Pixel scale, arcsec per pixel (> 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pixel_scale_arcsec: Option<f64>,
+    /// Seeing: FWHM of the Gaussian star image, arcsec (> 0). Default 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seeing_fwhm_arcsec: Option<f64>,
+    /// Radius of the circular photometric aperture, arcsec (> 0). Default the seeing
+    /// FWHM (which holds 93.75 % of a Gaussian image).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aperture_radius_arcsec: Option<f64>,
+    /// Read noise, e⁻ rms per pixel (≥ 0). Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub read_noise_e: Option<f64>,
+    /// Dark current, e⁻/s per pixel (≥ 0). Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dark_e_per_s: Option<f64>,
+    /// Gain, e⁻ per ADU (> 0). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gain_e_per_adu: Option<f64>,
+    /// Full well, e⁻ (> 0): the brightest pixel at or above it is saturated. Default:
+    /// none (never saturated).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub full_well_e: Option<f64>,
+    /// Sky brightness in the band, mag/arcsec², as measured at the site (−10 to 40).
+    /// Default: no sky.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 21.0)]
+    pub sky_mag_per_arcsec2: Option<f64>,
+    /// Airmass (1 to 40). Default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub airmass: Option<f64>,
+    /// Atmospheric extinction, mag per airmass (0 to 10). Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extinction_mag_per_airmass: Option<f64>,
+    /// Seed of the noisy samples: the same seed gives the same samples. Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
 }
 
 /// Which epochs to render, and how. `every` and `epochs` may be combined (their union
@@ -242,6 +306,29 @@ pub struct MaterialObject {
     /// Thin sheet lit and seen from both sides (solar panels). Default false.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub two_sided: Option<bool>,
+    /// Wavelength-dependent `n`, `k` or `albedo` as a short table (instead of the
+    /// number): the band integral then runs per wavelength (docs/physics.md §8).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spectral: Option<SpectralSpec>,
+}
+
+/// A material's parameters against wavelength: linear between the points, constant
+/// beyond the first and last.
+#[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralSpec {
+    /// Wavelengths, µm, increasing, 2 to 64 of them.
+    #[schema(example = json!([0.4, 0.55, 0.7]))]
+    pub wavelength_um: Vec<f64>,
+    /// Real part of the refractive index at each wavelength.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n: Option<Vec<f64>>,
+    /// Imaginary part of the refractive index at each wavelength.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub k: Option<Vec<f64>>,
+    /// Lambertian albedo at each wavelength.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub albedo: Option<Vec<f64>>,
 }
 
 /// How a rough conductor's Smith term combines the light's and the view's masking.
@@ -317,14 +404,34 @@ pub struct EpochSpec {
 #[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct IlluminationSpec {
-    /// Spectral band [λ1, λ2] in µm. Default [0.4, 0.7]. The Sun's irradiance in it at 1 AU
-    /// must be at least 1e-200 W/m² (not so only far in the Wien tail of a cold Sun).
+    /// Spectral band [λ1, λ2] in µm, every wavelength in it counted alike. Default
+    /// [0.4, 0.7]. Its magnitudes put the Sun at 1 AU at −26.74 (V-like). The Sun's
+    /// irradiance in it at 1 AU must be at least 1e-200 W/m² (not so only far in the Wien
+    /// tail of a cold Sun). Not with `band`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(min_items = 2, max_items = 2)]
     pub band_um: Option<[f64; 2]>,
-    /// Sun blackbody temperature in K. Default 5900 (the paper's value).
+    /// A standard passband instead of `band_um`, integrated through its tabulated response
+    /// (photon-weighted, as a CCD counts): `V`, `B` (Johnson, Bessell 1990), `R` (Cousins,
+    /// Bessell 1990), `G` (Gaia EDR3), `g`, `r`, `i` (SDSS, Doi et al. 2010; AB). Its
+    /// magnitudes take the Sun's magnitude in that band as zero point: V −26.76 and B
+    /// −26.13 (Willmer 2018, ApJS 236, 47), R −27.13, G −26.89 (Vega), g −26.46, r −26.93,
+    /// i −27.04 (AB), computed from the CALSPEC solar spectrum (docs/physics.md §10).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = "V")]
+    pub band: Option<String>,
+    /// Sun blackbody temperature in K. Default 5900 (the paper's value). Used with
+    /// `solar_spectrum: planck`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sun_temperature_k: Option<f64>,
+    /// The solar spectrum integrated through the band: `planck` (default: a blackbody at
+    /// `sun_temperature_k`) or `calspec` (the tabulated CALSPEC solar reference spectrum,
+    /// Colina, Bohlin & Castelli 1996, 0.1195–2.70 µm; the band must lie within it).
+    /// Magnitudes of wavelength-independent materials do not depend on it: E and the
+    /// Sun's in-band irradiance change alike.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = "planck")]
+    pub solar_spectrum: Option<String>,
     /// `off`, `sphere` (the default: the sunlit Lambertian Earth over its visible cap, with
     /// its distance and phase) or `seed` (the paper's Eq. 3: ρ·E_s as one parallel beam
     /// from the Earth's direction at any distance and Earth phase — to reproduce the

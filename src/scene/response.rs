@@ -3,8 +3,10 @@
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-/// The light curve and how it was computed.
+/// The light curve and how it was computed. (Named `LightCurve` in the OpenAPI spec: a
+/// schema called `Response` collides with the generated Python client's own `Response`.)
 #[derive(Debug, Clone, Serialize, Deserialize, ToSchema)]
+#[schema(as = LightCurve)]
 pub struct Response {
     pub epochs: Vec<EpochResult>,
     pub summary: Summary,
@@ -47,11 +49,25 @@ pub struct EpochResult {
     pub earthshine_w_m2: f64,
     /// Radiant intensity of the object towards the observer, W/sr.
     pub intensity_w_sr: f64,
-    /// Apparent magnitude, band-consistent (−26.74 for the Sun's band irradiance at 1 AU);
-    /// `null` when no light at all reaches the observer.
+    /// Apparent magnitude in the request's band: m = m_sun − 2.5 log10(E / E_sun), E_sun
+    /// the Sun's irradiance at 1 AU in the same band and m_sun its magnitude there (−26.74
+    /// for a `band_um` interval; a named `band` carries its own). `null` when no light at
+    /// all reaches the observer.
     pub magnitude: Option<f64>,
-    /// Magnitude at a standard range of 1000 km; `null` with `magnitude`.
-    pub magnitude_std: Option<f64>,
+    /// Range-normalised magnitude: `magnitude` moved to a range of 1000 km,
+    /// m − 5 log10(R / 1000 km), the phase left as it is. `null` with `magnitude`.
+    /// (Formerly `magnitude_std`.)
+    pub magnitude_1000km: Option<f64>,
+    /// The observers' standard magnitude: at 1000 km and 90° phase, the phase reduced with
+    /// the Lambert sphere's phase law F(g) = ((π − g) cos g + sin g)/π:
+    /// `magnitude_1000km` + 2.5 log10(F(g) / F(90°)). Constant over a light curve of a
+    /// Lambertian sphere. `null` with `magnitude`, or at phase 180° (F = 0).
+    pub magnitude_standard: Option<f64>,
+    /// McCants' intrinsic magnitude: at 1000 km and full phase (0°), the phase reduced with
+    /// the same Lambert sphere law: `magnitude_1000km` + 2.5 log10 F(g)
+    /// (= `magnitude_standard` − 2.5 log10 π, 1.243 mag brighter). `null` with
+    /// `magnitude_standard`.
+    pub magnitude_intrinsic: Option<f64>,
     /// Sun–object–observer angle, degrees.
     pub phase_angle_deg: f64,
     /// Object–observer distance, m.
@@ -80,6 +96,39 @@ pub struct EpochResult {
     /// (penumbra or umbra; `eclipse` says how much).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub in_earth_shadow: Option<bool>,
+    /// Requests with an `observation` only: the telescope's counts.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observation: Option<ObservationResult>,
+}
+
+/// A telescope's counts of the object at one epoch (the CCD equation, docs/physics.md
+/// §10a). S = Φ·10^(−0.4kX)·A·t·q·τ·f_ap; N = √(S + sky + dark + n_pix·σ_R²).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, ToSchema, PartialEq)]
+pub struct ObservationResult {
+    /// The object's electrons in the photometric aperture, S.
+    pub signal_e: f64,
+    /// The sky's electrons in the aperture.
+    pub sky_e: f64,
+    /// Dark-current electrons in the aperture.
+    pub dark_e: f64,
+    /// Pixels in the aperture, π r² / s².
+    pub pixels: f64,
+    /// Noise in the aperture, e⁻: √(S + sky + dark + pixels·read_noise²).
+    pub noise_e: f64,
+    /// Signal-to-noise ratio S / N (0 when there is neither signal nor noise).
+    pub snr: f64,
+    /// The signal in ADU, S / gain.
+    pub signal_adu: f64,
+    /// Electrons on the brightest pixel (the image centred on it, plus sky and dark).
+    pub peak_pixel_e: f64,
+    /// The brightest pixel reaches the full well.
+    pub saturated: bool,
+    /// A noisy measurement of S: Poisson(S + sky + dark) plus normal read noise, less the
+    /// expected sky and dark, drawn with the request's seed.
+    pub sample_e: f64,
+    /// The sample as a magnitude in the band, m − 2.5 log10(sample / S); `null` when the
+    /// sample is not positive or there is no magnitude.
+    pub sample_magnitude: Option<f64>,
 }
 
 /// How the light curve was computed.

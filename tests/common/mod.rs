@@ -144,12 +144,15 @@ pub fn assert_sane(r: &Response) {
                     "epoch {i}: magnitude {m} for {e:?}"
                 );
                 assert!(
-                    e.magnitude_std.is_some_and(f64::is_finite),
+                    e.magnitude_1000km.is_some_and(f64::is_finite),
                     "epoch {i}: {e:?}"
                 );
             }
             None => assert!(
-                e.irradiance_w_m2 == 0.0 && e.magnitude_std.is_none(),
+                e.irradiance_w_m2 == 0.0
+                    && e.magnitude_1000km.is_none()
+                    && e.magnitude_standard.is_none()
+                    && e.magnitude_intrinsic.is_none(),
                 "epoch {i}: null magnitude with light: {e:?}"
             ),
         }

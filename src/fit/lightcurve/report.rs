@@ -44,7 +44,7 @@ pub struct LightcurveFit {
     pub curve: Vec<FittedEpoch>,
     /// The request with the fitted values in place (materials changed; the yaw folded into
     /// every epoch's `attitude`), ready to simulate.
-    #[schema(value_type = Object)]
+    #[schema(value_type = Request)]
     pub request: serde_json::Value,
     pub warnings: Vec<String>,
     /// Evaluations are full light curves: `solver.evaluations` of them in

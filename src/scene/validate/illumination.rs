@@ -2,9 +2,10 @@
 
 use super::values::{err, finite, in_range};
 use super::ValidationError;
-use crate::radiometry::{planck, AU_M, SUN_RADIUS_M};
+use crate::radiometry::bands::{self, SolarSpectrum};
+use crate::radiometry::{planck, sun, AU_M, SUN_RADIUS_M};
 use crate::scene::request::Request;
-use crate::scene::{EarthshineModel, Illumination};
+use crate::scene::{EarthshineModel, Illumination, SolarSpectrumChoice};
 
 /// The least band irradiance of the Sun at 1 AU a request may ask for, W/m²: a scene's
 /// geometry (albedo × area / range²) can take another hundred decades off it before f64
@@ -28,17 +29,75 @@ pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationErro
         }
         out.band_um = [a, b];
     }
+    if let Some(name) = &spec.band {
+        if spec.band_um.is_some() {
+            return err(
+                "illumination.band",
+                "give either `band` (a named passband) or `band_um` (an interval), not both",
+            );
+        }
+        let Some(p) = bands::find(name) else {
+            return err(
+                "illumination.band",
+                format!(
+                    "unknown band `{name}`; expected one of {}",
+                    bands::names().join(", ")
+                ),
+            );
+        };
+        out.passband = Some(p);
+        out.band_um = p.range_um();
+        out.sun_magnitude = p.sun_magnitude;
+    }
     if let Some(t) = spec.sun_temperature_k {
         out.sun_temperature_k = in_range("illumination.sun_temperature_k", t, 100.0, 100_000.0)?;
     }
-    // A band far in the Wien tail of a cold Sun (0.01–0.05 µm at 300 K: ~1e-410 W/m²)
-    // holds light that no f64 can carry through a scene: say so rather than answer 0.
+    if let Some(s) = &spec.solar_spectrum {
+        out.solar_spectrum = match s.as_str() {
+            "planck" => SolarSpectrumChoice::Planck,
+            "calspec" => SolarSpectrumChoice::Calspec,
+            other => {
+                return err(
+                    "illumination.solar_spectrum",
+                    format!("unknown spectrum `{other}`; expected planck or calspec"),
+                )
+            }
+        };
+    }
     let [a, b] = out.band_um;
     let t = out.sun_temperature_k;
-    let ln_es = planck::ln_band_exitance(a, b, t) + 2.0 * (SUN_RADIUS_M / AU_M).ln();
-    if ln_es < MIN_SUN_BAND_1AU_W_M2.ln() {
+    out.sun_1au_w_m2 = match (out.passband, out.solar_spectrum) {
+        (None, SolarSpectrumChoice::Planck) => sun::band_irradiance_1au(out.band_um, t),
+        (Some(p), SolarSpectrumChoice::Planck) => SolarSpectrum::Planck(t).band_1au(p),
+        (Some(p), SolarSpectrumChoice::Calspec) => SolarSpectrum::Calspec.band_1au(p),
+        (None, SolarSpectrumChoice::Calspec) => {
+            let Some(e) = SolarSpectrum::calspec_interval_1au(out.band_um) else {
+                let [lo, hi] = bands::calspec_range_um();
+                return err(
+                    "illumination.band_um",
+                    format!(
+                        "[{a}, {b}] µm leaves the CALSPEC solar spectrum ({lo}–{hi} µm);                          choose a band within it or `solar_spectrum: planck`"
+                    ),
+                );
+            };
+            e
+        }
+    };
+    // A band far in the Wien tail of a cold Sun (0.01–0.05 µm at 300 K: ~1e-410 W/m²)
+    // holds light that no f64 can carry through a scene: say so rather than answer 0.
+    let ln_es = if out.passband.is_none() && out.solar_spectrum == SolarSpectrumChoice::Planck {
+        planck::ln_band_exitance(a, b, t) + 2.0 * (SUN_RADIUS_M / AU_M).ln()
+    } else {
+        out.sun_1au_w_m2.ln()
+    };
+    if ln_es.is_nan() || ln_es < MIN_SUN_BAND_1AU_W_M2.ln() {
+        let field = if out.passband.is_some() {
+            "illumination.band"
+        } else {
+            "illumination.band_um"
+        };
         return err(
-            "illumination.band_um",
+            field,
             format!(
                 "[{a}, {b}] µm holds almost none of a {t} K Sun's light: its irradiance at \
                  1 AU would be 1e{:.0} W/m², below the {MIN_SUN_BAND_1AU_W_M2:e} W/m² that \
@@ -96,6 +155,47 @@ mod tests {
                 .contains("holds almost none of a 300 K Sun's light"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_named_band_is_known_and_alone() {
+        let e = refused(|v| v["illumination"] = json!({"band": "U"}));
+        assert_eq!(e.field, "illumination.band");
+        assert!(
+            e.message
+                .contains("unknown band `U`; expected one of V, B, R, G, g, r, i"),
+            "{e}"
+        );
+        let e = refused(|v| v["illumination"] = json!({"band": "V", "band_um": [0.4, 0.7]}));
+        assert_eq!(e.field, "illumination.band");
+        let e = refused(|v| v["illumination"] = json!({"band": 5}));
+        assert_eq!(e.field, "illumination.band");
+        let e = refused(|v| v["illumination"] = json!({"solar_spectrum": "kurucz"}));
+        assert_eq!(
+            e,
+            ValidationError::new(
+                "illumination.solar_spectrum",
+                "unknown spectrum `kurucz`; expected planck or calspec"
+            )
+        );
+        let e = refused(|v| {
+            v["illumination"] = json!({"band_um": [0.05, 0.7], "solar_spectrum": "calspec"})
+        });
+        assert_eq!(e.field, "illumination.band_um");
+        assert!(
+            e.message.contains("leaves the CALSPEC solar spectrum"),
+            "{e}"
+        );
+        let scene = check(|v| v["illumination"] = json!({"band": "g"})).expect("valid");
+        let ill = scene.illumination;
+        assert_eq!(ill.passband.map(|p| p.name), Some("g"));
+        assert_eq!(ill.sun_magnitude, -26.46);
+        assert!(ill.sun_1au_w_m2 > 0.0 && ill.sun_1au_w_m2.is_finite());
+        let scene = check(|v| {
+            v["illumination"] = json!({"band_um": [0.4, 0.7], "solar_spectrum": "calspec"})
+        })
+        .expect("valid");
+        assert_eq!(scene.illumination.sun_magnitude, -26.74);
     }
 
     #[test]

@@ -49,6 +49,12 @@ pub(crate) fn material(field: &str, spec: &MaterialSpec) -> Result<Material, Val
             two_sided: false,
             tangent: DVec3::X,
         }),
+        MaterialSpec::Full(m) if m.spectral.is_some() => {
+            // each point of the table a material of its own; the first stands for it here
+            // (validate::spectral puts it at the band's wavelengths)
+            let first = super::spectral::check_points(field, m)?;
+            material(field, &MaterialSpec::Full(first))
+        }
         MaterialSpec::Full(m) => {
             if m.name.is_empty() {
                 return err(format!("{field}.name"), "must not be empty");

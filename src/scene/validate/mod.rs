@@ -9,7 +9,9 @@
 //! | `object.materials` | `materials.rs` |
 //! | `object.mesh` | `mesh.rs` |
 //! | `illumination` | `illumination.rs` |
+//! | materials' `spectral` tables, the band's wavelength bins | `spectral.rs` |
 //! | `epochs` or `geometry` (built in [`super::geometry`]) | `epochs.rs` |
+//! | `observation` | `observation.rs` |
 //! | `tolerance`, `method`, `image_*`, `centroid_subdivisions` | `fidelity.rs` |
 //! | `thumbnails` | `thumbnails.rs` |
 //! | the work it asks for, against the [`Limits`] | `work.rs` |
@@ -22,6 +24,8 @@ mod illumination;
 mod json;
 mod materials;
 mod mesh;
+mod observation;
+mod spectral;
 mod thumbnails;
 mod values;
 mod work;
@@ -40,11 +44,17 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
     let materials = materials::materials(req)?;
     let mesh = mesh::mesh(&req.object.mesh, &materials, limits)?;
     let illumination = illumination::illumination(req)?;
+    let (materials, spectral) = spectral::bins(req, materials, &illumination)?;
     let epochs::Epochs {
         epochs,
         sky,
         warnings,
     } = epochs::epochs(req, limits, &mesh, &illumination)?;
+    let observation = req
+        .observation
+        .as_ref()
+        .map(|o| observation::observation(o, &illumination))
+        .transpose()?;
     let tolerance = fidelity::tolerance(req)?;
     let method = fidelity::method(req)?;
     let (image_size, image_samples, centroid_subdivisions) =
@@ -75,5 +85,7 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         clip_shadows: true,
         sky,
         warnings,
+        observation,
+        spectral,
     })
 }

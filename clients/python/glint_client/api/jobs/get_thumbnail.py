@@ -1,0 +1,203 @@
+from http import HTTPStatus
+from typing import Any, cast
+from urllib.parse import quote
+
+import httpx
+
+from ...client import AuthenticatedClient, Client
+from ...types import Response, UNSET
+from ... import errors
+
+from ...models.error_body import ErrorBody
+from typing import cast
+
+
+
+def _get_kwargs(
+    id: str,
+    file: str,
+
+) -> dict[str, Any]:
+    
+
+    
+
+    
+
+    _kwargs: dict[str, Any] = {
+        "method": "get",
+        "url": "/v1/jobs/{id}/thumbnails/{file}".format(id=quote(str(id), safe=""),file=quote(str(file), safe=""),),
+    }
+
+
+    return _kwargs
+
+
+
+def _parse_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> ErrorBody | list[int] | None:
+    if response.status_code == 200:
+        response_200 = cast(list[int], response.content)
+
+        return response_200
+
+    if response.status_code == 404:
+        response_404 = ErrorBody.from_dict(response.json())
+
+
+
+        return response_404
+
+    if response.status_code == 409:
+        response_409 = ErrorBody.from_dict(response.json())
+
+
+
+        return response_409
+
+    if response.status_code == 503:
+        response_503 = ErrorBody.from_dict(response.json())
+
+
+
+        return response_503
+
+    if client.raise_on_unexpected_status:
+        raise errors.UnexpectedStatus(response.status_code, response.content)
+    else:
+        return None
+
+
+def _build_response(*, client: AuthenticatedClient | Client, response: httpx.Response) -> Response[ErrorBody | list[int]]:
+    return Response(
+        status_code=HTTPStatus(response.status_code),
+        content=response.content,
+        headers=response.headers,
+        parsed=_parse_response(client=client, response=response),
+    )
+
+
+def sync_detailed(
+    id: str,
+    file: str,
+    *,
+    client: AuthenticatedClient | Client,
+
+) -> Response[ErrorBody | list[int]]:
+    """ The rendered image of one epoch of a finished job (`{epoch}.png`, epoch index from 0).
+
+    Args:
+        id (str):
+        file (str):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[ErrorBody | list[int]]
+     """
+
+
+    kwargs = _get_kwargs(
+        id=id,
+file=file,
+
+    )
+
+    response = client.get_httpx_client().request(
+        **kwargs,
+    )
+
+    return _build_response(client=client, response=response)
+
+def sync(
+    id: str,
+    file: str,
+    *,
+    client: AuthenticatedClient | Client,
+
+) -> ErrorBody | list[int] | None:
+    """ The rendered image of one epoch of a finished job (`{epoch}.png`, epoch index from 0).
+
+    Args:
+        id (str):
+        file (str):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        ErrorBody | list[int]
+     """
+
+
+    return sync_detailed(
+        id=id,
+file=file,
+client=client,
+
+    ).parsed
+
+async def asyncio_detailed(
+    id: str,
+    file: str,
+    *,
+    client: AuthenticatedClient | Client,
+
+) -> Response[ErrorBody | list[int]]:
+    """ The rendered image of one epoch of a finished job (`{epoch}.png`, epoch index from 0).
+
+    Args:
+        id (str):
+        file (str):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        Response[ErrorBody | list[int]]
+     """
+
+
+    kwargs = _get_kwargs(
+        id=id,
+file=file,
+
+    )
+
+    response = await client.get_async_httpx_client().request(
+        **kwargs
+    )
+
+    return _build_response(client=client, response=response)
+
+async def asyncio(
+    id: str,
+    file: str,
+    *,
+    client: AuthenticatedClient | Client,
+
+) -> ErrorBody | list[int] | None:
+    """ The rendered image of one epoch of a finished job (`{epoch}.png`, epoch index from 0).
+
+    Args:
+        id (str):
+        file (str):
+
+    Raises:
+        errors.UnexpectedStatus: If the server returns an undocumented status code and Client.raise_on_unexpected_status is True.
+        httpx.TimeoutException: If the request takes longer than Client.timeout.
+
+    Returns:
+        ErrorBody | list[int]
+     """
+
+
+    return (await asyncio_detailed(
+        id=id,
+file=file,
+client=client,
+
+    )).parsed

@@ -49,7 +49,7 @@ const COMPUTED: &str =
     "computed from the CALSPEC solar spectrum and the band's zero point (spectra/generate.py)";
 
 /// The named passbands.
-pub static PASSBANDS: [Passband; 7] = [
+pub static PASSBANDS: [Passband; 8] = [
     Passband {
         name: "V",
         description: "Johnson V (Bessell 1990, PASP 102, 1181; speclite bessell-V)",
@@ -105,6 +105,14 @@ pub static PASSBANDS: [Passband; 7] = [
         sun_magnitude: -27.04,
         sun_magnitude_source: COMPUTED,
         table: include_str!("../../spectra/sdss2010-i.csv"),
+    },
+    Passband {
+        name: "clear",
+        description: "unfiltered silicon CCD, as the Kepler photometer's response, 0.42–0.905 µm (Van Cleve & Caldwell 2016, KSCI-19033-002; pyphot KEPLER_Kp); a camera's own response differs: give band_um for a plain interval",
+        zero_point: ZeroPoint::Vega,
+        sun_magnitude: -26.88,
+        sun_magnitude_source: COMPUTED,
+        table: include_str!("../../spectra/kepler-Kp.csv"),
     },
 ];
 

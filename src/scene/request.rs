@@ -413,10 +413,12 @@ pub struct IlluminationSpec {
     pub band_um: Option<[f64; 2]>,
     /// A standard passband instead of `band_um`, integrated through its tabulated response
     /// (photon-weighted, as a CCD counts): `V`, `B` (Johnson, Bessell 1990), `R` (Cousins,
-    /// Bessell 1990), `G` (Gaia EDR3), `g`, `r`, `i` (SDSS, Doi et al. 2010; AB). Its
+    /// Bessell 1990), `G` (Gaia EDR3), `g`, `r`, `i` (SDSS, Doi et al. 2010; AB), `clear`
+    /// (an unfiltered silicon CCD: the Kepler photometer's response, 0.42–0.905 µm). Its
     /// magnitudes take the Sun's magnitude in that band as zero point: V −26.76 and B
-    /// −26.13 (Willmer 2018, ApJS 236, 47), R −27.13, G −26.89 (Vega), g −26.46, r −26.93,
-    /// i −27.04 (AB), computed from the CALSPEC solar spectrum (docs/physics.md §10).
+    /// −26.13 (Willmer 2018, ApJS 236, 47), R −27.13, G −26.89, clear −26.88 (Vega),
+    /// g −26.46, r −26.93, i −27.04 (AB), computed from the CALSPEC solar spectrum
+    /// (docs/physics.md §10).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(example = "V")]
     pub band: Option<String>,

@@ -163,7 +163,7 @@ mod tests {
         assert_eq!(e.field, "illumination.band");
         assert!(
             e.message
-                .contains("unknown band `U`; expected one of V, B, R, G, g, r, i"),
+                .contains("unknown band `U`; expected one of V, B, R, G, g, r, i, clear"),
             "{e}"
         );
         let e = refused(|v| v["illumination"] = json!({"band": "V", "band_um": [0.4, 0.7]}));

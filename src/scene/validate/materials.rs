@@ -1,6 +1,7 @@
 //! `object.materials`: each material, a preset or a model with its parameters, each
 //! parameter in its range and none that the model does not use; names unique.
 
+use super::table::{at, column, PARAMETERS};
 use super::values::{err, in_range, positive, vector};
 use super::ValidationError;
 use crate::brdf::{AshikhminShirley, Brdf, Lambert, RoughConductor, SeedMicrofacet, Shadowing};
@@ -52,7 +53,7 @@ pub(crate) fn material(field: &str, spec: &MaterialSpec) -> Result<Material, Val
         MaterialSpec::Full(m) if m.spectral.is_some() => {
             // each point of the table a material of its own; the first stands for it here
             // (validate::spectral puts it at the band's wavelengths)
-            let first = super::spectral::check_points(field, m)?;
+            let first = check_points(field, m)?;
             material(field, &MaterialSpec::Full(first))
         }
         MaterialSpec::Full(m) => {
@@ -197,6 +198,27 @@ fn model_brdf(field: &str, model: &str, m: &MaterialObject) -> Result<Brdf, Vali
             format!("unknown model `{other}`; expected seed-microfacet, lambert, rough-conductor or ashikhmin-shirley"),
         ),
     }
+}
+
+/// Every point of a material's table validated as a material of its own; an error names
+/// the table's entry (`….spectral.n[2]`).
+fn check_points(field: &str, m: &MaterialObject) -> Result<MaterialObject, ValidationError> {
+    let s = m.spectral.as_ref().expect("a spectral material");
+    let first = at(field, m, s.wavelength_um[0])?;
+    for (j, &l) in s.wavelength_um.iter().enumerate() {
+        let point = at(field, m, l)?;
+        if let Err(e) = material(field, &MaterialSpec::Full(point)) {
+            // a tabulated parameter out of its range: name the table's entry
+            let named = PARAMETERS
+                .iter()
+                .find(|p| column(s, p).is_some() && e.field == format!("{field}.{p}"));
+            return Err(match named {
+                Some(p) => ValidationError::new(format!("{field}.spectral.{p}[{j}]"), e.message),
+                None => e,
+            });
+        }
+    }
+    Ok(first)
 }
 
 #[cfg(test)]

@@ -26,6 +26,7 @@ mod materials;
 mod mesh;
 mod observation;
 mod spectral;
+mod table;
 mod thumbnails;
 mod values;
 mod work;

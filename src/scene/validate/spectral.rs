@@ -2,134 +2,18 @@
 //! wavelength bins they are evaluated in (docs/physics.md §8).
 
 use super::materials::material;
+use super::table::at;
 use super::values::err;
 use super::ValidationError;
 use crate::radiometry::bands::SolarSpectrum;
 use crate::radiometry::earth::gauss_legendre;
-use crate::scene::request::{MaterialObject, MaterialSpec, Request, SpectralSpec};
+use crate::scene::request::{MaterialObject, MaterialSpec, Request};
 use crate::scene::{Illumination, Material, SolarSpectrumChoice, SpectralBin};
 
 /// Wavelength bins the band is cut into when a material depends on wavelength.
 pub const BINS: usize = 16;
-/// Most points of a material's table.
-pub const MAX_POINTS: usize = 64;
 /// The longest interval band a spectral material may be integrated over, µm.
 pub const MAX_BAND_UM: f64 = 30.0;
-
-/// The parameters a table may give, with their place in a material.
-const PARAMETERS: [&str; 3] = ["n", "k", "albedo"];
-
-fn column<'a>(s: &'a SpectralSpec, p: &str) -> Option<&'a Vec<f64>> {
-    match p {
-        "n" => s.n.as_ref(),
-        "k" => s.k.as_ref(),
-        _ => s.albedo.as_ref(),
-    }
-}
-
-fn scalar(m: &MaterialObject, p: &str) -> Option<f64> {
-    match p {
-        "n" => m.n,
-        "k" => m.k,
-        _ => m.albedo,
-    }
-}
-
-fn set(m: &mut MaterialObject, p: &str, v: f64) {
-    match p {
-        "n" => m.n = Some(v),
-        "k" => m.k = Some(v),
-        _ => m.albedo = Some(v),
-    }
-}
-
-/// Checks a material's table (`field` is the material's path) and returns the material
-/// without it, its tabulated parameters set to their values at `lambda_um` (linear
-/// between points, constant beyond the ends).
-pub(super) fn at(
-    field: &str,
-    m: &MaterialObject,
-    lambda_um: f64,
-) -> Result<MaterialObject, ValidationError> {
-    let s = m.spectral.as_ref().expect("a spectral material");
-    let f = format!("{field}.spectral");
-    let w = &s.wavelength_um;
-    if w.len() < 2 || w.len() > MAX_POINTS {
-        return err(
-            format!("{f}.wavelength_um"),
-            format!("must have 2 to {MAX_POINTS} wavelengths, got {}", w.len()),
-        );
-    }
-    for (i, &l) in w.iter().enumerate() {
-        if !(l.is_finite() && l > 0.0) || (i > 0 && l <= w[i - 1]) {
-            return err(
-                format!("{f}.wavelength_um[{i}]"),
-                "wavelengths must be finite, positive and increasing",
-            );
-        }
-    }
-    let mut given = 0;
-    let mut out = m.clone();
-    out.spectral = None;
-    for p in PARAMETERS {
-        let Some(col) = column(s, p) else { continue };
-        given += 1;
-        if scalar(m, p).is_some() {
-            return err(
-                format!("{f}.{p}"),
-                format!("give `{p}` either as a number or in `spectral`, not both"),
-            );
-        }
-        if col.len() != w.len() {
-            return err(
-                format!("{f}.{p}"),
-                format!(
-                    "must have one value per wavelength ({}), got {}",
-                    w.len(),
-                    col.len()
-                ),
-            );
-        }
-        let i = w.partition_point(|&x| x < lambda_um);
-        let v = if i == 0 {
-            col[0]
-        } else if i == w.len() {
-            col[w.len() - 1]
-        } else {
-            let t = (lambda_um - w[i - 1]) / (w[i] - w[i - 1]);
-            col[i - 1] + t * (col[i] - col[i - 1])
-        };
-        set(&mut out, p, v);
-    }
-    if given == 0 {
-        return err(f, "must give at least one of `n`, `k`, `albedo`");
-    }
-    Ok(out)
-}
-
-/// Every point of a material's table validated as a material of its own; an error names
-/// the table's entry (`….spectral.n[2]`).
-pub(super) fn check_points(
-    field: &str,
-    m: &MaterialObject,
-) -> Result<MaterialObject, ValidationError> {
-    let s = m.spectral.as_ref().expect("a spectral material");
-    let first = at(field, m, s.wavelength_um[0])?;
-    for (j, &l) in s.wavelength_um.iter().enumerate() {
-        let point = at(field, m, l)?;
-        if let Err(e) = material(field, &MaterialSpec::Full(point)) {
-            // a tabulated parameter out of its range: name the table's entry
-            let named = PARAMETERS
-                .iter()
-                .find(|p| column(s, p).is_some() && e.field == format!("{field}.{p}"));
-            return Err(match named {
-                Some(p) => ValidationError::new(format!("{field}.spectral.{p}[{j}]"), e.message),
-                None => e,
-            });
-        }
-    }
-    Ok(first)
-}
 
 /// The band's wavelength bins with every material in each, and the materials to report
 /// (a spectral material at the bins' mean wavelength); no bins when no material has a

@@ -15,10 +15,12 @@ pub const STANDARD_RANGE_M: f64 = 1.0e6;
 
 /// m = m_sun − 2.5 log10(E / E_sun): `sun_band_1au_w_m2` is the Sun's irradiance at 1 AU
 /// in the same band, `sun_magnitude` its magnitude there. `None` for no light at all
-/// (E ≤ 0); any positive E, however faint, gets a finite magnitude.
+/// (E ≤ 0); any positive E, however faint, gets a finite magnitude: the logarithms are
+/// taken apart, since the ratio of a subnormal E (6.5e-322 W/m², an observer 3e-308 rad
+/// above a plate's plane, found by the fuzz run) to E_sun underflows to 0.
 pub fn apparent(irradiance_w_m2: f64, sun_band_1au_w_m2: f64, sun_magnitude: f64) -> Option<f64> {
     if irradiance_w_m2 > 0.0 && irradiance_w_m2.is_finite() {
-        Some(sun_magnitude - 2.5 * (irradiance_w_m2 / sun_band_1au_w_m2).log10())
+        Some(sun_magnitude - 2.5 * (irradiance_w_m2.log10() - sun_band_1au_w_m2.log10()))
     } else {
         None
     }
@@ -95,4 +97,15 @@ mod tests {
         assert_eq!(standard(None, 1.0), None);
         assert_eq!(standard(Some(5.0), 4.0), None, "clamped to 180°: F = 0");
     }
+
+    #[test]
+    fn a_subnormal_irradiance_has_a_finite_magnitude() {
+        // 6.5e-322 W/m² (the fuzz run's case): E/E_sun would underflow to 0 and log10 to
+        // −inf; the logarithms taken apart give m_sun − 2.5·(−321.19 − 3) = 783.72.
+        let m = apparent(6.5e-322, 1.0e3, SUN_MAGNITUDE).expect("positive light");
+        let want = SUN_MAGNITUDE - 2.5 * (6.5e-322f64.log10() - 3.0);
+        assert!(m.is_finite() && (m - want).abs() < 1e-9, "{m} vs {want}");
+        assert!((m - 783.72).abs() < 0.01, "{m}");
+    }
+
 }

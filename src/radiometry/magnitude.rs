@@ -107,5 +107,4 @@ mod tests {
         assert!(m.is_finite() && (m - want).abs() < 1e-9, "{m} vs {want}");
         assert!((m - 783.72).abs() < 0.01, "{m}");
     }
-
 }

@@ -155,17 +155,41 @@ struct Disk {
 /// The specular part near the glint.
 #[derive(Debug, Clone)]
 enum Specular {
-    /// Averaged by a rule's points: `spec` widened to the blob's slope in the Sun–observer
-    /// plane where narrower (the penumbra pattern), each direction with its weight and
-    /// stretch.
-    Points { spec: Brdf, dirs: Vec<Sample> },
+    /// Averaged by a rule's points.
+    Points(Points),
     /// The disk's image through a lobe much narrower than it; for faces whose horizon
-    /// cuts the lobe, the hexagonal pattern's points as in `Points`.
-    Image {
-        image: Image,
-        spec: Brdf,
-        dirs: Vec<Sample>,
-    },
+    /// cuts the lobe, the hexagonal pattern's points (`grazing`).
+    Image { image: Image, grazing: Points },
+}
+
+/// A rule's directions: the specular part `spec`, widened to the blob's slope in the
+/// Sun–observer plane where narrower (hexagonal patterns), and each direction with its
+/// weight and stretch.
+#[derive(Debug, Clone)]
+struct Points {
+    spec: Brdf,
+    dirs: Vec<Sample>,
+}
+
+impl Points {
+    fn new(brdf: &Brdf, slope: f64, rule: &rule::Rule, v: DVec3, sun_radius: f64) -> Points {
+        let spec = widened(brdf.split(false), slope, rule.slope_in);
+        let dirs = rule
+            .dirs
+            .iter()
+            .map(|&(w, d)| sample(&spec, w, d, v, slope, rule.blob, sun_radius))
+            .collect();
+        Points { spec, dirs }
+    }
+
+    /// Σ w·f·cosθi·cosθr over the directions, sr⁻¹.
+    #[inline]
+    fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
+        self.dirs
+            .iter()
+            .map(|d| d.projected_given(&self.spec, frame, cr))
+            .sum()
+    }
 }
 
 impl<'a> SunLight<'a> {
@@ -199,30 +223,19 @@ impl<'a> SunLight<'a> {
             {
                 disk_rule(slope, l, v, sun_radius, earth, blob).and_then(|rule| {
                     let diffuse = brdf.split(true);
+                    let points = |rule: &rule::Rule| Points::new(brdf, slope, rule, v, sun_radius);
+                    let reach =
+                        |rule: &rule::Rule| sun_radius + 2.0 * TAIL * rule.slope_in.max(widest);
                     let (specular, reach) = match rule {
-                        DiskRule::Points(rule) => {
-                            let spec = widened(brdf.split(false), slope, rule.slope_in);
-                            let dirs = rule
-                                .dirs
-                                .iter()
-                                .map(|&(w, d)| sample(&spec, w, d, v, slope, rule.blob, sun_radius))
-                                .collect();
-                            let reach = sun_radius + 2.0 * TAIL * rule.slope_in.max(widest);
-                            (Specular::Points { spec, dirs }, reach)
-                        }
+                        DiskRule::Points(rule) => (Specular::Points(points(&rule)), reach(&rule)),
                         DiskRule::Image { grazing } => {
                             let least_cos = LEAST_COS_HALF_PHASE * sun_radius;
                             let image = Image::new(brdf.split(false), l, v, sun_radius, least_cos)?;
-                            let spec = widened(brdf.split(false), slope, grazing.slope_in);
-                            let dirs = grazing
-                                .dirs
-                                .iter()
-                                .map(|&(w, d)| {
-                                    sample(&spec, w, d, v, slope, grazing.blob, sun_radius)
-                                })
-                                .collect();
-                            let reach = sun_radius + 2.0 * TAIL * grazing.slope_in.max(widest);
-                            (Specular::Image { image, spec, dirs }, reach)
+                            let specular = Specular::Image {
+                                image,
+                                grazing: points(&grazing),
+                            };
+                            (specular, reach(&grazing))
                         }
                     };
                     Some(Disk {
@@ -272,17 +285,10 @@ impl Disk {
     #[inline]
     fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
         let specular = match &self.specular {
-            Specular::Points { spec, dirs } => dirs
-                .iter()
-                .map(|d| d.projected_given(spec, frame, cr))
-                .sum(),
-            Specular::Image { image, spec, dirs } => match image.projected_given(frame, cr) {
-                Some(value) => value,
-                None => dirs
-                    .iter()
-                    .map(|d| d.projected_given(spec, frame, cr))
-                    .sum(),
-            },
+            Specular::Points(points) => points.projected_given(frame, cr),
+            Specular::Image { image, grazing } => image
+                .projected_given(frame, cr)
+                .unwrap_or_else(|| grazing.projected_given(frame, cr)),
         };
         self.diffuse_dirs.projected_given(&self.diffuse, frame, cr) + specular
     }

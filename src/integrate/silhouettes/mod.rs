@@ -42,6 +42,7 @@
 
 mod areas;
 mod cells;
+mod contacts;
 mod counts;
 mod direction;
 mod folds;

@@ -12,9 +12,9 @@
 //!   boom's foot on the bus), fixed in the body frame ([`topology`]).
 //!
 //! Built once per request: the faces as convex polygons in their planes ([`polygons`]),
-//! the edges, adjacency and contacts ([`topology`]), connected patches of faces with
-//! the cones of their normals ([`patches`]), and a hierarchy of the polygons for rays
-//! ([`rays`]).
+//! the edges and adjacency ([`topology`]), where separate pieces meet ([`contacts`]),
+//! connected patches of faces with the cones of their normals ([`patches`]), and a
+//! hierarchy of the polygons for rays ([`rays`]).
 //!
 //! Per epoch and direction ([`Silhouettes::prepare`]):
 //! 1. each patch's cone says whether it faces along d, away, or both ways;
@@ -24,13 +24,13 @@
 //!    folds above its box: a patch that faces along d and that none reaches is *clean*
 //!    (one count for all its faces); in the others each face is tested against the
 //!    folds found, and each fold that crosses it becomes a line in its plane
-//!    ([`lines`]);
+//!    ([`direction`], [`lines`]);
 //! 4. one ray counts the sheets above the first unit of each connected region, and the
 //!    count floods the rest across edges, through crossed faces by the jumps of the
 //!    lines a path crosses ([`counts`]).
 //!
-//! A crossed face ([`Silhouettes::areas`]) is cut by its lines (and its contacts) into
-//! convex cells ([`cells`]); a cell's count along each direction is its face's
+//! A crossed face ([`Silhouettes::areas`], in [`areas`]) is cut by its lines (and its
+//! contacts) into convex cells ([`cells`]); a cell's count along each direction is its face's
 //! reference count plus the jumps of the lines between them: no ray. Only the cells of a
 //! face a contact runs through are decided by rays (the count does not follow the
 //! sheets there). Nothing is recognised by shape: a convex mesh has no fold above any

@@ -12,8 +12,9 @@
 //! of the edge clear of the lines. No face is decided by a ray of its own unless it is
 //! the first of its region.
 
+use super::direction::{Direction, FaceState, PatchState, DARK_ONLY, UNKNOWN};
 use super::lines::{clearance, crossed};
-use super::{Direction, Silhouettes, CLEAN, CROSSED, DARK_ONLY, DIRTY, RAYS, UNCROSSED, UNKNOWN};
+use super::Silhouettes;
 use glam::DVec3;
 
 /// A unit of the flood: a clean patch, or a receiving face of a patch lines reach.
@@ -32,7 +33,7 @@ impl Silhouettes<'_> {
         let np = self.patches.len();
         for p in 0..np {
             match dir.patch[p] {
-                CLEAN if dir.patch_count[p] == UNKNOWN => {
+                PatchState::Clean if dir.patch_count[p] == UNKNOWN => {
                     let f = self.patches.faces_of(p)[0] as usize;
                     let (count, n) = self.seed_count(dir, f, self.polys.inside[f]);
                     rays += n;
@@ -41,16 +42,16 @@ impl Silhouettes<'_> {
                         self.spread(dir, Unit::Patch(p as u32));
                     }
                 }
-                DIRTY => {
+                PatchState::Dirty => {
                     for &f in self.patches.faces_of(p) {
                         let f = f as usize;
-                        if !matches!(dir.face[f], UNCROSSED | CROSSED)
+                        if !matches!(dir.face[f], FaceState::Uncrossed | FaceState::Crossed)
                             || dir.face_count[f] != UNKNOWN
                         {
                             continue;
                         }
                         rays += self.seed_face(dir, f);
-                        if dir.face[f] != RAYS && dir.face_count[f] != DARK_ONLY {
+                        if dir.face[f] != FaceState::Rays && dir.face_count[f] != DARK_ONLY {
                             self.spread(dir, Unit::Face(f as u32));
                         }
                     }
@@ -101,7 +102,7 @@ impl Silhouettes<'_> {
     /// a crossed face with no point clear of its lines, or no count, is left to rays per
     /// cell. Returns the rays cast.
     fn seed_face(&self, dir: &mut Direction, f: usize) -> u64 {
-        if dir.face[f] == UNCROSSED {
+        if dir.face[f] == FaceState::Uncrossed {
             let (count, n) = self.seed_count(dir, f, self.polys.inside[f]);
             dir.face_count[f] = count;
             return n;
@@ -113,12 +114,12 @@ impl Silhouettes<'_> {
             .map(|x| (x, self.polys.to2(f, x)))
             .find(|&(_, q)| clearance(lines, q) > margin);
         let Some((x, q)) = at else {
-            dir.face[f] = RAYS;
+            dir.face[f] = FaceState::Rays;
             return 0;
         };
         let (count, n) = self.seed_count(dir, f, x);
         if count == DARK_ONLY {
-            dir.face[f] = RAYS;
+            dir.face[f] = FaceState::Rays;
         } else {
             dir.face_count[f] = count;
             dir.face_ref[f] = q;
@@ -146,7 +147,7 @@ impl Silhouettes<'_> {
                             // a clean patch beside a clean one: both face along d with
                             // sheets of one kind (or the two-sided faces of both face
                             // one way), so nothing folds between them: any edge serves
-                            CLEAN => {
+                            PatchState::Clean => {
                                 if dir.patch_count[q] != UNKNOWN {
                                     continue;
                                 }
@@ -155,7 +156,7 @@ impl Silhouettes<'_> {
                                     queue.push(next);
                                 }
                             }
-                            DIRTY => {
+                            PatchState::Dirty => {
                                 for &(e, _, out) in self.patches.exits_of(link) {
                                     if let Some(next) = self.hand_over(dir, None, count, e, out) {
                                         queue.push(next);
@@ -193,8 +194,11 @@ impl Silhouettes<'_> {
         let g = g as usize;
         let p = self.patches.of_face[g] as usize;
         let target = match dir.patch[p] {
-            CLEAN if dir.patch_count[p] == UNKNOWN => Unit::Patch(p as u32),
-            DIRTY if matches!(dir.face[g], UNCROSSED | CROSSED) && dir.face_count[g] == UNKNOWN => {
+            PatchState::Clean if dir.patch_count[p] == UNKNOWN => Unit::Patch(p as u32),
+            PatchState::Dirty
+                if matches!(dir.face[g], FaceState::Uncrossed | FaceState::Crossed)
+                    && dir.face_count[g] == UNKNOWN =>
+            {
                 Unit::Face(g as u32)
             }
             _ => return None,
@@ -206,8 +210,8 @@ impl Silhouettes<'_> {
         {
             return None;
         }
-        let src_crossed = from.filter(|&f| dir.face[f as usize] == CROSSED);
-        let dst_crossed = matches!(target, Unit::Face(_)) && dir.face[g] == CROSSED;
+        let src_crossed = from.filter(|&f| dir.face[f as usize] == FaceState::Crossed);
+        let dst_crossed = matches!(target, Unit::Face(_)) && dir.face[g] == FaceState::Crossed;
         if src_crossed.is_none() && !dst_crossed {
             match target {
                 Unit::Patch(p) => dir.patch_count[p as usize] = count,

@@ -174,6 +174,18 @@ pub struct Across {
     pub tol: f64,
 }
 
+impl Default for Across {
+    fn default() -> Self {
+        Across {
+            d: DVec3::Z,
+            u: DVec3::X,
+            w: DVec3::Y,
+            eps: 0.0,
+            tol: 0.0,
+        }
+    }
+}
+
 /// The shadow of fold `fold` on face `f` when it crosses one of the face's polygons
 /// (within `tol`) above the face's plane, as a line in the face's plane. `across`: the
 /// face's corners across d when it is one polygon; the test is then made there, where

@@ -73,140 +73,21 @@ pub struct Patches {
 
 impl Patches {
     pub fn build(polys: &Polygons, topo: &Topology) -> Patches {
-        let nf = polys.faces();
-        let mut of_face = vec![NONE; nf];
-        let mut faces_at = vec![0u32];
-        let mut faces = Vec::with_capacity(nf);
-        let mut queue = std::collections::VecDeque::new();
-        // grown breadth first from each face not yet taken, in the faces' (spatial) order
-        for seed in 0..nf {
-            if of_face[seed] != NONE {
-                continue;
-            }
-            let p = (faces_at.len() - 1) as u32;
-            let n0 = polys.normal[seed];
-            let sided = polys.two_sided[seed];
-            of_face[seed] = p;
-            faces.push(seed as u32);
-            let start = faces.len() - 1;
-            queue.clear();
-            queue.push_back(seed as u32);
-            'grow: while let Some(f) = queue.pop_front() {
-                for &(g, _) in topo.neighbours(f as usize) {
-                    let gi = g as usize;
-                    if of_face[gi] != NONE
-                        || polys.two_sided[gi] != sided
-                        || polys.normal[gi].dot(n0) < MAX_TURN_COS
-                    {
-                        continue;
-                    }
-                    if faces.len() - start >= MAX_FACES {
-                        break 'grow;
-                    }
-                    of_face[gi] = p;
-                    faces.push(g);
-                    queue.push_back(g);
-                }
-            }
-            faces_at.push(faces.len() as u32);
-        }
+        let (of_face, faces_at, faces) = grow(polys, topo);
         let np = faces_at.len() - 1;
-        let members = |p: usize| &faces[faces_at[p] as usize..faces_at[p + 1] as usize];
-        let mut axis = Vec::with_capacity(np);
-        let mut sin_half = Vec::with_capacity(np);
-        let mut centre = Vec::with_capacity(np);
-        let mut half = Vec::with_capacity(np);
-        let mut contacts = Vec::with_capacity(np);
-        let mut open = Vec::with_capacity(np);
-        for p in 0..np {
-            let m = members(p);
-            let sum: DVec3 = m.iter().map(|&f| polys.normal[f as usize]).sum();
-            let a = sum.try_normalize().unwrap_or(polys.normal[m[0] as usize]);
-            let cos_min = m
-                .iter()
-                .map(|&f| polys.normal[f as usize].dot(a))
-                .fold(1.0f64, f64::min)
-                .clamp(-1.0, 1.0);
-            // the cone's half angle, widened a little for rounding
-            let half_angle = cos_min.acos() + 1e-9;
-            axis.push(a);
-            sin_half.push(if half_angle < std::f64::consts::FRAC_PI_2 {
-                half_angle.sin()
-            } else {
-                2.0
-            });
-            let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-            for &f in m {
-                for k in polys.of(f as usize) {
-                    for &q in polys.corners3(k) {
-                        lo = lo.min(q);
-                        hi = hi.max(q);
-                    }
-                }
-            }
-            centre.push((lo + hi) * 0.5);
-            half.push((hi - lo) * 0.5);
-            contacts.push(m.iter().any(|&f| !topo.contacts_of(f as usize).is_empty()));
-            open.push(topo.open[m[0] as usize]);
-        }
-        let mut inner_items = Vec::new();
-        let mut rim_items = Vec::new();
-        let mut exit_items = Vec::new();
-        for (i, e) in topo.edges.iter().enumerate() {
-            let p0 = of_face[e.f0 as usize];
-            let p1 = if e.f1 == NONE {
-                NONE
-            } else {
-                of_face[e.f1 as usize]
-            };
-            if p0 == p1 {
-                inner_items.push((p0, i as u32));
-            } else {
-                rim_items.push((p0, (i as u32, p1)));
-            }
-            if e.f1 != NONE && p0 != p1 {
-                exit_items.push((p0, (i as u32, e.f0, e.f1)));
-                exit_items.push((p1, (i as u32, e.f1, e.f0)));
-            }
-        }
-        let (inner_at, inner) = csr_of(np, inner_items);
-        let (rim_at, rim) = csr_of(np, rim_items);
-        // the exits grouped by the patch they lead into
-        exit_items.sort_by_key(|&(p, (_, _, out))| (p, of_face[out as usize]));
-        let mut links_at = vec![0u32; np + 1];
-        let mut links = Vec::new();
-        let exits: Vec<(u32, u32, u32)> = exit_items.iter().map(|x| x.1).collect();
-        let mut i = 0;
-        while i < exit_items.len() {
-            let (p, (_, _, out)) = exit_items[i];
-            let q = of_face[out as usize];
-            let mut j = i;
-            while j < exit_items.len()
-                && exit_items[j].0 == p
-                && of_face[exit_items[j].1 .2 as usize] == q
-            {
-                j += 1;
-            }
-            links.push(Link {
-                patch: q,
-                exits: (i as u32, j as u32),
-            });
-            links_at[p as usize + 1] += 1;
-            i = j;
-        }
-        for k in 0..np {
-            links_at[k + 1] += links_at[k];
-        }
+        let shapes = Shapes::of(polys, topo, &faces_at, &faces);
+        let ((inner_at, inner), (rim_at, rim), (links_at, links, exits)) =
+            edges_by_patch(topo, &of_face, np);
         Patches {
             of_face,
             faces_at,
             faces,
-            axis,
-            sin_half,
-            centre,
-            half,
-            contacts,
-            open,
+            axis: shapes.axis,
+            sin_half: shapes.sin_half,
+            centre: shapes.centre,
+            half: shapes.half,
+            contacts: shapes.contacts,
+            open: shapes.open,
             inner_at,
             inner,
             rim_at,
@@ -259,6 +140,178 @@ impl Patches {
             Facing::Mixed
         }
     }
+}
+
+/// The patches grown breadth first over shared edges: per face its patch, and per patch
+/// its faces (CSR).
+fn grow(polys: &Polygons, topo: &Topology) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
+    let nf = polys.faces();
+    let mut of_face = vec![NONE; nf];
+    let mut faces_at = vec![0u32];
+    let mut faces = Vec::with_capacity(nf);
+    let mut queue = std::collections::VecDeque::new();
+    // grown breadth first from each face not yet taken, in the faces' (spatial) order
+    for seed in 0..nf {
+        if of_face[seed] != NONE {
+            continue;
+        }
+        let p = (faces_at.len() - 1) as u32;
+        let n0 = polys.normal[seed];
+        let sided = polys.two_sided[seed];
+        of_face[seed] = p;
+        faces.push(seed as u32);
+        let start = faces.len() - 1;
+        queue.clear();
+        queue.push_back(seed as u32);
+        'grow: while let Some(f) = queue.pop_front() {
+            for &(g, _) in topo.neighbours(f as usize) {
+                let gi = g as usize;
+                if of_face[gi] != NONE
+                    || polys.two_sided[gi] != sided
+                    || polys.normal[gi].dot(n0) < MAX_TURN_COS
+                {
+                    continue;
+                }
+                if faces.len() - start >= MAX_FACES {
+                    break 'grow;
+                }
+                of_face[gi] = p;
+                faces.push(g);
+                queue.push_back(g);
+            }
+        }
+        faces_at.push(faces.len() as u32);
+    }
+    (of_face, faces_at, faces)
+}
+
+/// Per patch: its normals' cone, its box, whether a contact runs through it, and whether
+/// it is open.
+struct Shapes {
+    axis: Vec<DVec3>,
+    sin_half: Vec<f64>,
+    centre: Vec<DVec3>,
+    half: Vec<DVec3>,
+    contacts: Vec<bool>,
+    open: Vec<bool>,
+}
+
+impl Shapes {
+    fn of(polys: &Polygons, topo: &Topology, faces_at: &[u32], faces: &[u32]) -> Shapes {
+        let np = faces_at.len() - 1;
+        let members = |p: usize| &faces[faces_at[p] as usize..faces_at[p + 1] as usize];
+        let mut axis = Vec::with_capacity(np);
+        let mut sin_half = Vec::with_capacity(np);
+        let mut centre = Vec::with_capacity(np);
+        let mut half = Vec::with_capacity(np);
+        let mut contacts = Vec::with_capacity(np);
+        let mut open = Vec::with_capacity(np);
+        for p in 0..np {
+            let m = members(p);
+            let sum: DVec3 = m.iter().map(|&f| polys.normal[f as usize]).sum();
+            let a = sum.try_normalize().unwrap_or(polys.normal[m[0] as usize]);
+            let cos_min = m
+                .iter()
+                .map(|&f| polys.normal[f as usize].dot(a))
+                .fold(1.0f64, f64::min)
+                .clamp(-1.0, 1.0);
+            // the cone's half angle, widened a little for rounding
+            let half_angle = cos_min.acos() + 1e-9;
+            axis.push(a);
+            sin_half.push(if half_angle < std::f64::consts::FRAC_PI_2 {
+                half_angle.sin()
+            } else {
+                2.0
+            });
+            let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+            for &f in m {
+                for k in polys.of(f as usize) {
+                    for &q in polys.corners3(k) {
+                        lo = lo.min(q);
+                        hi = hi.max(q);
+                    }
+                }
+            }
+            centre.push((lo + hi) * 0.5);
+            half.push((hi - lo) * 0.5);
+            contacts.push(m.iter().any(|&f| !topo.contacts_of(f as usize).is_empty()));
+            open.push(topo.open[m[0] as usize]);
+        }
+        Shapes {
+            axis,
+            sin_half,
+            centre,
+            half,
+            contacts,
+            open,
+        }
+    }
+}
+
+/// CSR tables.
+type Csr<T> = (Vec<u32>, Vec<T>);
+
+/// Per patch (of `np`): the edges inside it, those on its rim with the patch across,
+/// and its links to its neighbours with the exits into each.
+#[allow(clippy::type_complexity)]
+fn edges_by_patch(
+    topo: &Topology,
+    of_face: &[u32],
+    np: usize,
+) -> (
+    Csr<u32>,
+    Csr<(u32, u32)>,
+    (Vec<u32>, Vec<Link>, Vec<(u32, u32, u32)>),
+) {
+    let mut inner_items = Vec::new();
+    let mut rim_items = Vec::new();
+    let mut exit_items = Vec::new();
+    for (i, e) in topo.edges.iter().enumerate() {
+        let p0 = of_face[e.f0 as usize];
+        let p1 = if e.f1 == NONE {
+            NONE
+        } else {
+            of_face[e.f1 as usize]
+        };
+        if p0 == p1 {
+            inner_items.push((p0, i as u32));
+        } else {
+            rim_items.push((p0, (i as u32, p1)));
+        }
+        if e.f1 != NONE && p0 != p1 {
+            exit_items.push((p0, (i as u32, e.f0, e.f1)));
+            exit_items.push((p1, (i as u32, e.f1, e.f0)));
+        }
+    }
+    let (inner_at, inner) = csr_of(np, inner_items);
+    let (rim_at, rim) = csr_of(np, rim_items);
+    // the exits grouped by the patch they lead into
+    exit_items.sort_by_key(|&(p, (_, _, out))| (p, of_face[out as usize]));
+    let mut links_at = vec![0u32; np + 1];
+    let mut links = Vec::new();
+    let exits: Vec<(u32, u32, u32)> = exit_items.iter().map(|x| x.1).collect();
+    let mut i = 0;
+    while i < exit_items.len() {
+        let (p, (_, _, out)) = exit_items[i];
+        let q = of_face[out as usize];
+        let mut j = i;
+        while j < exit_items.len()
+            && exit_items[j].0 == p
+            && of_face[exit_items[j].1 .2 as usize] == q
+        {
+            j += 1;
+        }
+        links.push(Link {
+            patch: q,
+            exits: (i as u32, j as u32),
+        });
+        links_at[p as usize + 1] += 1;
+        i = j;
+    }
+    for k in 0..np {
+        links_at[k + 1] += links_at[k];
+    }
+    ((inner_at, inner), (rim_at, rim), (links_at, links, exits))
 }
 
 #[cfg(test)]

@@ -8,10 +8,10 @@
 //! across a line where another piece of the mesh meets the face's plane inside the face
 //! (a contact: a boom's foot on a bus), fixed in the body frame and found here.
 
+use super::contacts::{contact_segments, Contact};
 use crate::geometry::union_find::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// No triangle (a border edge's missing second side).
 pub const NONE: u32 = u32::MAX;
@@ -75,61 +75,6 @@ impl Edge {
     }
 }
 
-/// Where another piece meets a face: a segment in the face's plane (m) and the other
-/// piece's triangle (its corners, m, and its face) that meets the face along it. Above
-/// the face, that triangle is a sheet on one side of the segment: the count changes
-/// across it as across a fold ([`Contact::jump`]).
-#[derive(Debug, Clone, Copy)]
-pub struct Contact {
-    pub a: DVec3,
-    pub b: DVec3,
-    pub other: [DVec3; 3],
-    pub face: u32,
-}
-
-impl Contact {
-    /// How many more sheets lie just left of the segment than just right of it (seen
-    /// along `d` in the plane's coordinates of a face with unit normal `n` through `o`;
-    /// `to2` maps a point of that plane to them); `blocks`: whether the other face's
-    /// sheet counts along d. Zero when the other triangle lies below the plane along d.
-    pub fn jump(
-        &self,
-        n: DVec3,
-        o: DVec3,
-        d: DVec3,
-        eps: f64,
-        blocks: bool,
-        to2: impl Fn(DVec3) -> glam::DVec2,
-    ) -> i32 {
-        if !blocks {
-            return 0;
-        }
-        let nd = n.dot(d);
-        // the other triangle's corners above the plane, along d
-        let (mut sum, mut k) = (DVec3::ZERO, 0);
-        for v in self.other {
-            if n.dot(v - o) / nd > eps {
-                sum += v;
-                k += 1;
-            }
-        }
-        if k == 0 {
-            return 0;
-        }
-        let c = sum / k as f64;
-        let onto = |x: DVec3| to2(x - d * (n.dot(x - o) / nd));
-        let (pa, pb, pc) = (onto(self.a), onto(self.b), onto(c));
-        let s = (pb - pa).perp_dot(pc - pa);
-        if s > 0.0 {
-            1
-        } else if s < 0.0 {
-            -1
-        } else {
-            0
-        }
-    }
-}
-
 /// The surface's structure (see the module doc).
 pub struct Topology {
     pub edges: Vec<Edge>,
@@ -156,131 +101,16 @@ impl Topology {
         tol: f64,
     ) -> Topology {
         // `two_sided` is per face
-        let nt = mesh.triangles.len();
         // the welded edges that merging faces sorted, or sorted here when it did not
         let (welded, sorted) = faces.welded_edges(mesh);
         let (welded, sorted) = (&welded[..], &sorted[..]);
-        // pieces by union-find over shared edges; a piece is open when any edge of it is
-        // not shared by exactly two triangles wound the opposite ways
-        let mut parent: Vec<u32> = (0..nt as u32).collect();
-        let mut open_root = vec![false; nt];
-        let mut edges = Vec::new();
-        // each edge's welded ends
-        let mut ends: Vec<(u32, u32)> = Vec::new();
-        let mut bad_triangles = Vec::new();
-        let face = |t: u32| tri_face[t as usize];
-        for shared in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
-            let (wa, wb, t0) = shared[0];
-            let a = mesh.vertices[wa as usize];
-            let b = mesh.vertices[wb as usize];
-            let forward = |t: u32| {
-                let tri = mesh.triangles[t as usize];
-                (0..3).any(|k| {
-                    welded[tri[k] as usize] == wa && welded[tri[(k + 1) % 3] as usize] == wb
-                })
-            };
-            // triangle t's corner off the edge
-            let third = |t: u32| {
-                let tri = mesh.triangles[t as usize];
-                let v = tri
-                    .iter()
-                    .copied()
-                    .find(|&v| welded[v as usize] != wa && welded[v as usize] != wb)
-                    .unwrap_or(tri[0]);
-                mesh.vertices[v as usize]
-            };
-            let single = |t: u32| Edge {
-                a,
-                b,
-                f0: face(t),
-                f1: NONE,
-                in0: third(t),
-                in1: third(t),
-                valley: false,
-                flipped: false,
-            };
-            match shared.len() {
-                1 => {
-                    bad_triangles.push(t0);
-                    edges.push(single(t0));
-                    ends.push((wa, wb));
-                }
-                2 => {
-                    let t1 = shared[1].2;
-                    union(&mut parent, t0, t1);
-                    let flipped = forward(t0) == forward(t1);
-                    if flipped {
-                        bad_triangles.extend([t0, t1]);
-                    }
-                    if flipped || face(t0) != face(t1) {
-                        // t1's corner off the edge, above t0's plane: the surface turns
-                        // inward here (checked against the piece below)
-                        let [p0, p1, p2] = mesh.corners(t0 as usize);
-                        let n0 = (p1 - p0).cross(p2 - p0);
-                        let off = n0.dot(third(t1) - a);
-                        edges.push(Edge {
-                            a,
-                            b,
-                            f0: face(t0),
-                            f1: face(t1),
-                            in0: third(t0),
-                            in1: third(t1),
-                            valley: !flipped && off > tol * n0.length(),
-                            flipped,
-                        });
-                        ends.push((wa, wb));
-                    }
-                }
-                _ => {
-                    for w in shared.windows(2) {
-                        union(&mut parent, w[0].2, w[1].2);
-                    }
-                    bad_triangles.extend(shared.iter().map(|s| s.2));
-                    // more than two sheets meet here: each counts on its own side
-                    for s in shared {
-                        edges.push(single(s.2));
-                        ends.push((wa, wb));
-                    }
-                }
-            }
-        }
-        for t in bad_triangles {
-            let r = find(&mut parent, t);
-            open_root[r as usize] = true;
-        }
-        let mut open = two_sided.to_vec();
-        for t in 0..nt as u32 {
-            open[face(t) as usize] |= open_root[find(&mut parent, t) as usize];
-        }
-        // a valley keeps its shadow inside a solid only on a closed piece whose normals
-        // point out of it (positive volume) and whose faces are one-sided
-        let mut volume = vec![0.0f64; nt];
-        for t in 0..nt as u32 {
-            let [p0, p1, p2] = mesh.corners(t as usize);
-            volume[find(&mut parent, t) as usize] += p0.dot(p1.cross(p2));
-        }
-        let solid_face = |f: u32, parent: &mut Vec<u32>| {
-            let t = faces.faces[f as usize].triangles[0];
-            !open[f as usize] && volume[find(parent, t) as usize] > 0.0
-        };
-        for e in edges.iter_mut().filter(|e| e.valley) {
-            e.valley = solid_face(e.f0, &mut parent) && solid_face(e.f1, &mut parent);
-        }
-        let edges = merge_in_line(&edges, &ends, &mesh.vertices);
-
-        let nf = faces.len();
-        let mut with_edge: Vec<(u32, (u32, u32))> = Vec::new();
-        for (i, e) in edges.iter().enumerate() {
-            let (f, g) = (e.f0, e.f1);
-            if g != NONE && f != g {
-                with_edge.push((f, (g, i as u32)));
-                with_edge.push((g, (f, i as u32)));
-            }
-        }
-        let (adjacent_at, adjacent) = csr_of(nf, with_edge);
-
+        let mut found = edges_of(mesh, welded, sorted, tri_face, tol);
+        let open = open_faces(&mut found, tri_face, two_sided);
+        keep_solid_valleys(&mut found, mesh, faces, &open);
+        let edges = merge_in_line(&found.edges, &found.ends, &mesh.vertices);
+        let (adjacent_at, adjacent) = adjacency(&edges, faces.len());
         let contacts = contact_segments(mesh, welded, tri_face, tol);
-        let (contacts_at, contacts) = csr_of(nf, contacts);
+        let (contacts_at, contacts) = csr_of(faces.len(), contacts);
         Topology {
             edges,
             adjacent_at,
@@ -302,6 +132,165 @@ impl Topology {
     }
 }
 
+/// The welded mesh's edges before those in line are merged, with the pieces the
+/// triangles form.
+struct Found {
+    edges: Vec<Edge>,
+    /// Each edge's welded ends.
+    ends: Vec<(u32, u32)>,
+    /// Union-find over the triangles: a piece is the triangles joined by shared edges.
+    parent: Vec<u32>,
+    /// Triangles beside an edge not shared by exactly two triangles wound opposite ways.
+    bad_triangles: Vec<u32>,
+}
+
+/// Every edge between two faces or along a border (`sorted`: the welded edges as
+/// (welded a, welded b, triangle), grouped by their ends), and the pieces.
+fn edges_of(
+    mesh: &Mesh,
+    welded: &[u32],
+    sorted: &[(u32, u32, u32)],
+    tri_face: &[u32],
+    tol: f64,
+) -> Found {
+    let nt = mesh.triangles.len();
+    // pieces by union-find over shared edges; a piece is open when any edge of it is
+    // not shared by exactly two triangles wound the opposite ways
+    let mut parent: Vec<u32> = (0..nt as u32).collect();
+    let mut edges = Vec::new();
+    let mut ends: Vec<(u32, u32)> = Vec::new();
+    let mut bad_triangles = Vec::new();
+    let face = |t: u32| tri_face[t as usize];
+    for shared in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+        let (wa, wb, t0) = shared[0];
+        let a = mesh.vertices[wa as usize];
+        let b = mesh.vertices[wb as usize];
+        let forward = |t: u32| {
+            let tri = mesh.triangles[t as usize];
+            (0..3).any(|k| welded[tri[k] as usize] == wa && welded[tri[(k + 1) % 3] as usize] == wb)
+        };
+        // triangle t's corner off the edge
+        let third = |t: u32| {
+            let tri = mesh.triangles[t as usize];
+            let v = tri
+                .iter()
+                .copied()
+                .find(|&v| welded[v as usize] != wa && welded[v as usize] != wb)
+                .unwrap_or(tri[0]);
+            mesh.vertices[v as usize]
+        };
+        let single = |t: u32| Edge {
+            a,
+            b,
+            f0: face(t),
+            f1: NONE,
+            in0: third(t),
+            in1: third(t),
+            valley: false,
+            flipped: false,
+        };
+        match shared.len() {
+            1 => {
+                bad_triangles.push(t0);
+                edges.push(single(t0));
+                ends.push((wa, wb));
+            }
+            2 => {
+                let t1 = shared[1].2;
+                union(&mut parent, t0, t1);
+                let flipped = forward(t0) == forward(t1);
+                if flipped {
+                    bad_triangles.extend([t0, t1]);
+                }
+                if flipped || face(t0) != face(t1) {
+                    // t1's corner off the edge, above t0's plane: the surface turns
+                    // inward here (checked against the piece below)
+                    let [p0, p1, p2] = mesh.corners(t0 as usize);
+                    let n0 = (p1 - p0).cross(p2 - p0);
+                    let off = n0.dot(third(t1) - a);
+                    edges.push(Edge {
+                        a,
+                        b,
+                        f0: face(t0),
+                        f1: face(t1),
+                        in0: third(t0),
+                        in1: third(t1),
+                        valley: !flipped && off > tol * n0.length(),
+                        flipped,
+                    });
+                    ends.push((wa, wb));
+                }
+            }
+            _ => {
+                for w in shared.windows(2) {
+                    union(&mut parent, w[0].2, w[1].2);
+                }
+                bad_triangles.extend(shared.iter().map(|s| s.2));
+                // more than two sheets meet here: each counts on its own side
+                for s in shared {
+                    edges.push(single(s.2));
+                    ends.push((wa, wb));
+                }
+            }
+        }
+    }
+    Found {
+        edges,
+        ends,
+        parent,
+        bad_triangles,
+    }
+}
+
+/// Per face: its piece is open (a bad triangle in it) or it is two-sided.
+fn open_faces(found: &mut Found, tri_face: &[u32], two_sided: &[bool]) -> Vec<bool> {
+    let nt = tri_face.len();
+    let parent = &mut found.parent;
+    let face = |t: u32| tri_face[t as usize];
+    let mut open_root = vec![false; nt];
+    for &t in &found.bad_triangles {
+        let r = find(parent, t);
+        open_root[r as usize] = true;
+    }
+    let mut open = two_sided.to_vec();
+    for t in 0..nt as u32 {
+        open[face(t) as usize] |= open_root[find(parent, t) as usize];
+    }
+    open
+}
+
+/// Keeps an edge a valley only between faces of closed pieces whose normals point out
+/// of them (positive volume) and whose faces are one-sided: only there does a valley
+/// keep its shadow inside a solid.
+fn keep_solid_valleys(found: &mut Found, mesh: &Mesh, faces: &Faces, open: &[bool]) {
+    let nt = mesh.triangles.len();
+    let parent = &mut found.parent;
+    let mut volume = vec![0.0f64; nt];
+    for t in 0..nt as u32 {
+        let [p0, p1, p2] = mesh.corners(t as usize);
+        volume[find(parent, t) as usize] += p0.dot(p1.cross(p2));
+    }
+    let solid_face = |f: u32, parent: &mut Vec<u32>| {
+        let t = faces.faces[f as usize].triangles[0];
+        !open[f as usize] && volume[find(parent, t) as usize] > 0.0
+    };
+    for e in found.edges.iter_mut().filter(|e| e.valley) {
+        e.valley = solid_face(e.f0, parent) && solid_face(e.f1, parent);
+    }
+}
+
+/// Per face (of `nf`): the faces it meets across an edge, with the edge (CSR).
+fn adjacency(edges: &[Edge], nf: usize) -> (Vec<u32>, Vec<(u32, u32)>) {
+    let mut with_edge: Vec<(u32, (u32, u32))> = Vec::new();
+    for (i, e) in edges.iter().enumerate() {
+        let (f, g) = (e.f0, e.f1);
+        if g != NONE && f != g {
+            with_edge.push((f, (g, i as u32)));
+            with_edge.push((g, (f, i as u32)));
+        }
+    }
+    csr_of(nf, with_edge)
+}
 /// The edges with runs of edges between the same two faces (or along one face's border)
 /// that continue one another in a straight line joined into one: a finely meshed box side
 /// meets the next along one edge, not hundreds. Its shadow is the same line, so nothing
@@ -415,290 +404,9 @@ pub(super) fn csr_of<V>(n: usize, items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
     )
 }
 
-/// Segments (m) where triangles of different faces that share no vertex meet: each is
-/// recorded on both faces. Found through a uniform grid of the triangles' boxes.
-fn contact_segments(
-    mesh: &Mesh,
-    welded: &[u32],
-    tri_face: &[u32],
-    tol: f64,
-) -> Vec<(u32, Contact)> {
-    let nt = mesh.triangles.len();
-    if nt < 2 {
-        return Vec::new();
-    }
-    let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
-    let boxes: Vec<(DVec3, DVec3)> = corners
-        .iter()
-        .map(|c| {
-            let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(tol);
-            let hi = c[0].max(c[1]).max(c[2]) + DVec3::splat(tol);
-            (lo, hi)
-        })
-        .collect();
-    let (lo, hi) = boxes
-        .iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), b| {
-            (lo.min(b.0), hi.max(b.1))
-        });
-    // cells of about the median triangle's box size
-    let mut sizes: Vec<f64> = boxes.iter().map(|b| (b.1 - b.0).max_element()).collect();
-    let mid = sizes.len() / 2;
-    sizes.select_nth_unstable_by(mid, f64::total_cmp);
-    let extent = (hi - lo).max(DVec3::splat(tol));
-    // at most ~8 cells a triangle (a finely meshed dish beside long panels would
-    // otherwise ask for millions of empty cells), and at most 1024 along an axis
-    let volume = extent.x * extent.y * extent.z;
-    let cell = sizes[mid]
-        .max((volume / (8.0 * nt as f64).min(4.0e6)).cbrt())
-        .max(extent.max_element() / 1024.0)
-        .max(tol);
-    let dims =
-        ((extent / cell).ceil().as_uvec3()).clamp(glam::UVec3::ONE, glam::UVec3::splat(1025));
-    let index = |p: DVec3| {
-        let q = ((p - lo) / cell).floor();
-        glam::UVec3::new(
-            (q.x.max(0.0) as u32).min(dims.x - 1),
-            (q.y.max(0.0) as u32).min(dims.y - 1),
-            (q.z.max(0.0) as u32).min(dims.z - 1),
-        )
-    };
-    let linear = |c: glam::UVec3| (c.x + dims.x * (c.y + dims.y * c.z)) as usize;
-    let cells_of = |t: usize| {
-        let (a, z) = (index(boxes[t].0), index(boxes[t].1));
-        (a.z..=z.z).flat_map(move |w| {
-            (a.y..=z.y).flat_map(move |y| (a.x..=z.x).map(move |x| glam::UVec3::new(x, y, w)))
-        })
-    };
-    // the triangles binned by cell (a counting sort: no comparison sort of the entries)
-    let n_cells = (dims.x * dims.y * dims.z) as usize;
-    let mut start = vec![0u32; n_cells + 1];
-    for t in 0..nt {
-        for c in cells_of(t) {
-            start[linear(c) + 1] += 1;
-        }
-    }
-    for i in 0..n_cells {
-        start[i + 1] += start[i];
-    }
-    let mut fill = start.clone();
-    let mut binned = vec![0u32; start[n_cells] as usize];
-    for t in 0..nt {
-        for c in cells_of(t) {
-            let k = linear(c);
-            binned[fill[k] as usize] = t as u32;
-            fill[k] += 1;
-        }
-    }
-    // each pair sharing a cell is tested once, by the triangle of the two that spans fewer
-    // cells (a large panel's triangle is found by the small ones in its cells, instead of
-    // scanning them all), and the pairs are then put in order
-    let spans: Vec<u32> = (0..nt)
-        .map(|t| {
-            let (a, z) = (index(boxes[t].0), index(boxes[t].1));
-            (z - a + glam::UVec3::ONE).element_product()
-        })
-        .collect();
-    let pairs: Vec<(u32, u32, (DVec3, DVec3))> = (0..nt)
-        .into_par_iter()
-        .map_init(
-            || (vec![u32::MAX; nt], Vec::new()),
-            |(stamp, near), s| {
-                near.clear();
-                let mine = (spans[s], s);
-                for c in cells_of(s) {
-                    let k = linear(c);
-                    for &t in &binned[start[k] as usize..start[k + 1] as usize] {
-                        let ti = t as usize;
-                        if ti != s && mine < (spans[ti], ti) && stamp[ti] != s as u32 {
-                            stamp[ti] = s as u32;
-                            near.push(t);
-                        }
-                    }
-                }
-                let mut found = Vec::new();
-                for &t in near.iter() {
-                    let t = t as usize;
-                    if tri_face[s] == tri_face[t] {
-                        continue;
-                    }
-                    let (bs, bt) = (boxes[s], boxes[t]);
-                    if bs.0.cmpgt(bt.1).any() || bt.0.cmpgt(bs.1).any() {
-                        continue;
-                    }
-                    let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
-                    let shares = ts
-                        .iter()
-                        .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
-                    if shares {
-                        continue;
-                    }
-                    let (lo, hi) = (s.min(t), s.max(t));
-                    if let Some(seg) = meet(&corners[lo], &corners[hi], tol) {
-                        found.push((lo as u32, hi as u32, seg));
-                    }
-                }
-                found
-            },
-        )
-        .flatten()
-        .collect();
-    // Each contact seen from both sides: (receiving face, other triangle, segment).
-    let mut seen: Vec<(u32, u32, (DVec3, DVec3))> = Vec::with_capacity(2 * pairs.len());
-    for &(s, t, seg) in &pairs {
-        seen.push((tri_face[s as usize], t, seg));
-        seen.push((tri_face[t as usize], s, seg));
-    }
-    // A face of several triangles meets another triangle along one line (the triangle
-    // across the face's plane), found once per triangle of the face that it touches: where
-    // that line runs along an edge inside the face, both triangles beside the edge find
-    // the same piece, and counting it twice would double its jump. So the pieces of one
-    // face and one other triangle are joined where they overlap.
-    seen.sort_unstable_by_key(|c| (c.0, c.1));
-    let mut out = Vec::with_capacity(seen.len());
-    let mut spans: Vec<(f64, f64)> = Vec::new();
-    for group in seen.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
-        let (face, other) = (group[0].0, group[0].1 as usize);
-        let contact = |a: DVec3, b: DVec3| {
-            (
-                face,
-                Contact {
-                    a,
-                    b,
-                    other: corners[other],
-                    face: tri_face[other],
-                },
-            )
-        };
-        if group.len() == 1 {
-            let (a, b) = group[0].2;
-            out.push(contact(a, b));
-            continue;
-        }
-        let (o, e) = (
-            group[0].2 .0,
-            (group[0].2 .1 - group[0].2 .0).normalize_or_zero(),
-        );
-        spans.clear();
-        spans.extend(group.iter().map(|&(_, _, (a, b))| {
-            let (s, t) = ((a - o).dot(e), (b - o).dot(e));
-            (s.min(t), s.max(t))
-        }));
-        spans.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
-        let mut cur = spans[0];
-        for &(lo, hi) in &spans[1..] {
-            if lo <= cur.1 + tol {
-                cur.1 = cur.1.max(hi);
-            } else {
-                out.push(contact(o + e * cur.0, o + e * cur.1));
-                cur = (lo, hi);
-            }
-        }
-        out.push(contact(o + e * cur.0, o + e * cur.1));
-    }
-    out
-}
-
-/// The segment where triangles `a` and `b` meet (touching within `tol` counts), when it
-/// is longer than `tol`; coplanar triangles are left out (nothing in a face's plane
-/// shades it).
-pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> {
-    let na = (a[1] - a[0]).cross(a[2] - a[0]).normalize_or_zero();
-    let nb = (b[1] - b[0]).cross(b[2] - b[0]).normalize_or_zero();
-    let line = na.cross(nb);
-    if line.length() < 1e-9 {
-        return None;
-    }
-    let line = line.normalize();
-    let sa = cut_by_plane(a, nb, b[0], tol, line)?;
-    let sb = cut_by_plane(b, na, a[0], tol, line)?;
-    let lo = sa.0.max(sb.0);
-    let hi = sa.1.min(sb.1);
-    if hi - lo <= tol {
-        return None;
-    }
-    // a point on the line: from a's segment
-    let (p0, t0) = sa.2;
-    Some((p0 + line * (lo - t0), p0 + line * (hi - t0)))
-}
-
-/// The interval (along `line`) of triangle `t` where it meets the plane (`n`, through
-/// `p`), with a point on it and that point's parameter.
-fn cut_by_plane(
-    t: &[DVec3; 3],
-    n: DVec3,
-    p: DVec3,
-    tol: f64,
-    line: DVec3,
-) -> Option<(f64, f64, (DVec3, f64))> {
-    let s = t.map(|v| n.dot(v - p));
-    if s.iter().all(|&x| x > tol) || s.iter().all(|&x| x < -tol) {
-        return None;
-    }
-    let mut pts: [DVec3; 4] = [DVec3::ZERO; 4];
-    let mut k = 0;
-    for i in 0..3 {
-        let j = (i + 1) % 3;
-        if s[i].abs() <= tol {
-            pts[k] = t[i];
-            k += 1;
-            if k == 4 {
-                break;
-            }
-        }
-        if (s[i] > tol && s[j] < -tol) || (s[i] < -tol && s[j] > tol) {
-            let u = s[i] / (s[i] - s[j]);
-            pts[k] = t[i] + (t[j] - t[i]) * u;
-            k += 1;
-            if k == 4 {
-                break;
-            }
-        }
-    }
-    if k < 2 {
-        return None;
-    }
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for q in &pts[..k] {
-        let x = q.dot(line);
-        lo = lo.min(x);
-        hi = hi.max(x);
-    }
-    Some((lo, hi, (pts[0], pts[0].dot(line))))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn a_post_standing_on_a_plate_meets_it_along_its_foot() {
-        // a vertical triangle whose bottom edge lies on the plate z = 0
-        let plate = [
-            DVec3::new(-1.0, -1.0, 0.0),
-            DVec3::new(1.0, -1.0, 0.0),
-            DVec3::new(0.0, 1.0, 0.0),
-        ];
-        let post = [
-            DVec3::new(-0.2, 0.0, 0.0),
-            DVec3::new(0.2, 0.0, 0.0),
-            DVec3::new(0.0, 0.0, 1.0),
-        ];
-        let (p, q) = meet(&plate, &post, 1e-9).expect("they meet");
-        let (lo, hi) = (p.x.min(q.x), p.x.max(q.x));
-        assert!(
-            (lo + 0.2).abs() < 1e-12 && (hi - 0.2).abs() < 1e-12,
-            "{p} {q}"
-        );
-        assert!(p.y.abs() < 1e-12 && p.z.abs() < 1e-12);
-        // lifted off the plate: no contact
-        let lifted = post.map(|v| v + DVec3::Z * 0.01);
-        assert!(meet(&plate, &lifted, 1e-9).is_none());
-        // piercing it: the segment inside the plate
-        let pierce = post.map(|v| v - DVec3::Z * 0.5);
-        let (p, q) = meet(&plate, &pierce, 1e-9).expect("pierces");
-        assert!(((p - q).length() - 0.2).abs() < 1e-12);
-    }
 
     #[test]
     fn a_post_standing_on_the_diagonal_inside_a_face_meets_it_once() {

@@ -1,0 +1,285 @@
+//! One direction's state in an epoch ([`Direction`]) and how a patch's receivers are
+//! decided along it ([`Silhouettes::receivers`], step 3 of the map in the module above):
+//! the folds above the patch, the patch clean when none reaches it, or each receiving
+//! face with the fold lines that cross it.
+
+use super::folds::Fold;
+use super::lines::{self, Across, Line, LineGrid};
+use super::patches::Facing;
+use super::{counts, Silhouettes};
+use glam::{DVec2, DVec3};
+
+/// A patch's state along one direction.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum PatchState {
+    /// No face of it to decide along d.
+    Off,
+    /// Faces along d as a whole and no fold is above it: one count.
+    Clean,
+    /// Decided face by face.
+    Dirty,
+}
+
+/// A face's state along one direction, in a dirty patch.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum FaceState {
+    /// Not asked about, or it faces away along d.
+    NotReceiver,
+    /// No line crosses it: one count.
+    Uncrossed,
+    /// Lines cross it: a reference count, cells.
+    Crossed,
+    /// A contact runs through it (or no count could be had): rays per cell.
+    Rays,
+}
+
+/// A count not known yet.
+pub(super) const UNKNOWN: i32 = i32::MIN;
+/// Dark, by a ray that could not count the sheets.
+pub(super) const DARK_ONLY: i32 = i32::MIN + 1;
+
+/// One direction's state in an epoch (kept for the next epoch when the direction is the
+/// same: a Sun fixed in the body frame).
+#[derive(Default)]
+pub struct Direction {
+    pub(super) d: Option<DVec3>,
+    pub(super) across: Across,
+    /// Per patch: its facing, state, and count (clean patches).
+    pub(super) facing: Vec<Facing>,
+    pub(super) patch: Vec<PatchState>,
+    pub(super) patch_count: Vec<i32>,
+    /// Per face (meaningful in dirty patches): state, count (at the reference point of
+    /// a crossed face, in its plane), and its range of `lines`.
+    pub(super) face: Vec<FaceState>,
+    pub(super) face_count: Vec<i32>,
+    pub(super) face_ref: Vec<DVec2>,
+    pub(super) face_lines: Vec<(u32, u32)>,
+    pub(super) lines: Vec<Line>,
+    pub(super) folds: Vec<Fold>,
+    pub(super) grid: LineGrid,
+    /// Per fold: the last patch query that met it (candidates once per patch).
+    pub(super) stamp: Vec<u32>,
+    pub(super) query: u32,
+    /// The folds above the patch being decided, with their boxes across d and tops;
+    /// its receivers' footprints, and their corners across d.
+    pub(super) near: Vec<Near>,
+    pub(super) footprint: Vec<Footprint>,
+    pub(super) corners: Vec<DVec2>,
+    pub(super) queue: Vec<counts::Unit>,
+    /// Per face: asked about when the direction was last prepared.
+    pub(super) asked: Vec<bool>,
+    /// Rays cast for this direction's counts, and whether this epoch asked for the
+    /// direction (its rays count for the epoch even when kept from the last, so the
+    /// count does not depend on which thread ran which epoch).
+    pub(super) rays: u64,
+    pub(super) used: bool,
+}
+
+/// A fold near a patch: its box across d (m), its top along d (m), its index.
+#[derive(Clone, Copy)]
+pub(super) struct Near {
+    lo: DVec2,
+    hi: DVec2,
+    top: f64,
+    fold: u32,
+}
+
+/// Does the line through fold `f` (across d) pass through the box `lo`–`hi`?
+#[inline]
+fn line_meets_box(f: &Fold, lo: DVec2, hi: DVec2) -> bool {
+    let e = f.pb - f.pa;
+    let s = |x: f64, y: f64| e.perp_dot(DVec2::new(x, y) - f.pa);
+    let c = [s(lo.x, lo.y), s(hi.x, lo.y), s(lo.x, hi.y), s(hi.x, hi.y)];
+    c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0)
+}
+
+/// A receiving face across d: its box (m, widened by the tolerance), its lowest point
+/// along d (m, raised by the rounding height), its range of corners.
+#[derive(Clone, Copy)]
+pub(super) struct Footprint {
+    face: u32,
+    corners: (u32, u32),
+    lo: DVec2,
+    hi: DVec2,
+    bottom: f64,
+}
+
+impl Direction {
+    /// Face `f`'s lines (empty unless it is crossed).
+    #[inline]
+    pub(super) fn lines_of(&self, f: usize) -> &[Line] {
+        if !matches!(self.face[f], FaceState::Crossed | FaceState::Rays) {
+            return &[];
+        }
+        let (a, b) = self.face_lines[f];
+        &self.lines[a as usize..b as usize]
+    }
+}
+
+impl Silhouettes<'_> {
+    /// Patch `p`'s receivers along the direction: the patch clean, or each face asked
+    /// about with the lines that cross it.
+    pub(super) fn receivers(&self, dir: &mut Direction, wanted: &[u8], bit: u8, p: usize) {
+        let facing = dir.facing[p];
+        let faces = self.patches.faces_of(p);
+        let whole = facing == Facing::Along
+            || (facing == Facing::Away && self.polys.two_sided[faces[0] as usize]);
+        self.folds_above(dir, p);
+        if whole && dir.near.is_empty() && !self.patches.contacts[p] {
+            dir.patch[p] = PatchState::Clean;
+            return;
+        }
+        dir.patch[p] = PatchState::Dirty;
+        let (plo, phi) = self.footprints(dir, wanted, bit, faces);
+        let folds = &dir.folds;
+        dir.near.retain(|n| {
+            !(n.lo.cmpgt(phi).any() || n.hi.cmplt(plo).any())
+                && line_meets_box(&folds[n.fold as usize], plo, phi)
+        });
+        for i in 0..dir.footprint.len() {
+            let fp = dir.footprint[i];
+            self.classify(dir, &fp);
+        }
+    }
+
+    /// Fills `dir.near` with the folds above patch `p`'s box, each once.
+    fn folds_above(&self, dir: &mut Direction, p: usize) {
+        let Across { d, u, w, .. } = dir.across;
+        let (c, h) = (self.patches.centre[p], self.patches.half[p]);
+        let reach = |a: DVec3| h.x * a.x.abs() + h.y * a.y.abs() + h.z * a.z.abs();
+        let at = DVec2::new(c.dot(u), c.dot(w));
+        let half = DVec2::new(reach(u), reach(w)) + DVec2::splat(self.tol);
+        let bottom = c.dot(d) - reach(d) - self.eps;
+        dir.query = dir.query.wrapping_add(1);
+        let query = dir.query;
+        dir.near.clear();
+        let (folds, stamp, near) = (&dir.folds, &mut dir.stamp, &mut dir.near);
+        let (plo, phi) = (at - half, at + half);
+        dir.grid.query(plo, phi, |i| {
+            let iu = i as usize;
+            if stamp[iu] == query {
+                return;
+            }
+            stamp[iu] = query;
+            let fold = &folds[iu];
+            if fold.top <= bottom {
+                return;
+            }
+            let (lo, hi) = (fold.pa.min(fold.pb), fold.pa.max(fold.pb));
+            if lo.cmpgt(phi).any() || hi.cmplt(plo).any() || !line_meets_box(fold, plo, phi) {
+                return;
+            }
+            near.push(Near {
+                lo,
+                hi,
+                top: fold.top,
+                fold: i,
+            });
+        });
+    }
+
+    /// Fills `dir.footprint` with the receivers among `faces` (a dirty patch's), with
+    /// their corners across d: their boxes there and their bottoms along d. Returns the
+    /// patch's own footprint (widened by the tolerance), tighter than its box's.
+    fn footprints(
+        &self,
+        dir: &mut Direction,
+        wanted: &[u8],
+        bit: u8,
+        faces: &[u32],
+    ) -> (DVec2, DVec2) {
+        let Across { d, u, w, .. } = dir.across;
+        dir.footprint.clear();
+        dir.corners.clear();
+        let (mut plo, mut phi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        for &f in faces {
+            let f = f as usize;
+            dir.face_count[f] = UNKNOWN;
+            if wanted[f] & bit == 0 || !self.receives(f, d) {
+                dir.face[f] = FaceState::NotReceiver;
+                continue;
+            }
+            let first = dir.corners.len() as u32;
+            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+            let mut bottom = f64::INFINITY;
+            for k in self.polys.of(f) {
+                for &q in self.polys.corners3(k) {
+                    let a = DVec2::new(q.dot(u), q.dot(w));
+                    dir.corners.push(a);
+                    lo = lo.min(a);
+                    hi = hi.max(a);
+                    bottom = bottom.min(q.dot(d));
+                }
+            }
+            plo = plo.min(lo);
+            phi = phi.max(hi);
+            dir.footprint.push(Footprint {
+                face: f as u32,
+                corners: (first, dir.corners.len() as u32),
+                lo: lo - DVec2::splat(self.tol),
+                hi: hi + DVec2::splat(self.tol),
+                bottom: bottom + self.eps,
+            });
+        }
+        (plo - DVec2::splat(self.tol), phi + DVec2::splat(self.tol))
+    }
+
+    /// Gives the receiver of footprint `fp` its lines (folds and contacts) and its state.
+    fn classify(&self, dir: &mut Direction, fp: &Footprint) {
+        let f = fp.face as usize;
+        let start = dir.lines.len() as u32;
+        self.face_lines(dir, fp);
+        self.contact_lines(dir, f);
+        dir.face_lines[f] = (start, dir.lines.len() as u32);
+        let crossed = dir.lines.len() as u32 > start;
+        // A path between two points of a face that is not convex may leave it. And
+        // where another piece meets a face, the meeting segments are found triangle
+        // pair by pair: one whose triangles share a corner with the face's is left
+        // out (it cannot be told from two neighbours meeting at that corner), so the
+        // count cannot be trusted to follow the lines there: rays per cell.
+        let touched = !self.topo.contacts_of(f).is_empty();
+        dir.face[f] = if touched || (crossed && !self.polys.convex[f]) {
+            FaceState::Rays
+        } else if crossed {
+            FaceState::Crossed
+        } else {
+            FaceState::Uncrossed
+        };
+    }
+
+    /// Appends to `dir.lines` the contacts on face `f` across which its count changes.
+    fn contact_lines(&self, dir: &mut Direction, f: usize) {
+        let d = dir.across.d;
+        let (n, o) = (self.polys.normal[f], self.polys.point[f]);
+        for c in self.topo.contacts_of(f) {
+            let blocks = self.blocks(c.face as usize, d);
+            let jump = c.jump(n, o, d, self.eps, blocks, |x| self.polys.to2(f, x));
+            if jump != 0 {
+                dir.lines.push(Line {
+                    p: self.polys.to2(f, c.a),
+                    q: self.polys.to2(f, c.b),
+                    jump,
+                    bounds: true,
+                });
+            }
+        }
+    }
+
+    /// Appends to `dir.lines` the lines of the folds near its patch (`dir.near`) that
+    /// cross the face of footprint `fp`.
+    fn face_lines(&self, dir: &mut Direction, fp: &Footprint) {
+        let across = dir.across;
+        let f = fp.face as usize;
+        let corners = &dir.corners[fp.corners.0 as usize..fp.corners.1 as usize];
+        let one = (self.polys.of(f).len() == 1).then_some(corners);
+        for near in &dir.near {
+            if near.top <= fp.bottom || near.lo.cmpgt(fp.hi).any() || near.hi.cmplt(fp.lo).any() {
+                continue;
+            }
+            let fold = &dir.folds[near.fold as usize];
+            if let Some(line) = lines::crossing(&self.polys, f, fold, &across, one) {
+                dir.lines.push(line);
+            }
+        }
+    }
+}

@@ -12,17 +12,10 @@
 //! of the edge clear of the lines. No face is decided by a ray of its own unless it is
 //! the first of its region.
 
-use super::direction::{Direction, FaceState, PatchState, DARK_ONLY, UNKNOWN};
+use super::direction::{Direction, FaceState, PatchState, Unit, DARK_ONLY, UNKNOWN};
 use super::lines::{clearance, crossed};
 use super::Silhouettes;
 use glam::DVec3;
-
-/// A unit of the flood: a clean patch, or a receiving face of a patch lines reach.
-#[derive(Clone, Copy)]
-pub(super) enum Unit {
-    Patch(u32),
-    Face(u32),
-}
 
 impl Silhouettes<'_> {
     /// Gives every clean patch and every receiving face of the other patches its count

@@ -6,7 +6,7 @@
 use super::folds::Fold;
 use super::lines::{self, Across, Line, LineGrid};
 use super::patches::Facing;
-use super::{counts, Silhouettes};
+use super::Silhouettes;
 use glam::{DVec2, DVec3};
 
 /// A patch's state along one direction.
@@ -31,6 +31,13 @@ pub(super) enum FaceState {
     Crossed,
     /// A contact runs through it (or no count could be had): rays per cell.
     Rays,
+}
+
+/// A unit of the flood: a clean patch, or a receiving face of a patch lines reach.
+#[derive(Clone, Copy)]
+pub(super) enum Unit {
+    Patch(u32),
+    Face(u32),
 }
 
 /// A count not known yet.
@@ -65,7 +72,7 @@ pub struct Direction {
     pub(super) near: Vec<Near>,
     pub(super) footprint: Vec<Footprint>,
     pub(super) corners: Vec<DVec2>,
-    pub(super) queue: Vec<counts::Unit>,
+    pub(super) queue: Vec<Unit>,
     /// Per face: asked about when the direction was last prepared.
     pub(super) asked: Vec<bool>,
     /// Rays cast for this direction's counts, and whether this epoch asked for the

@@ -28,6 +28,8 @@ pub const MAX_TUMBLE_STEPS: f64 = 5e7;
 /// The epochs, what the site sees at each, and warnings for the response.
 pub struct Built {
     pub epochs: Vec<Epoch>,
+    /// Unix seconds of `times.start`: what series times in seconds count from.
+    pub start_unix: f64,
     pub sky: Vec<Sky>,
     pub warnings: Vec<String>,
 }
@@ -354,6 +356,7 @@ pub fn build(g: &GeometrySpec, limits: &Limits) -> Result<Built, ValidationError
     }
     Ok(Built {
         epochs,
+        start_unix: window.start.unix(),
         sky,
         warnings,
     })

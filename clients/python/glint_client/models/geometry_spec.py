@@ -12,6 +12,7 @@ from ..types import UNSET, Unset
 from typing import cast
 
 if TYPE_CHECKING:
+  from ..models.articulation_spec import ArticulationSpec
   from ..models.attitude_spec import AttitudeSpec
   from ..models.earth_orientation_spec import EarthOrientationSpec
   from ..models.orbit_spec import OrbitSpec
@@ -58,6 +59,9 @@ class GeometrySpec:
                   otherwise a 6th-order splitting integrator.
             earth_orientation (EarthOrientationSpec | None | Unset):
             visible_only (None | Unset | VisibleOnlySpec):
+            articulation (list[ArticulationSpec] | None | Unset): Parts of the mesh that turn about hinges each epoch (solar
+                arrays). Absent: the
+                mesh is rigid.
      """
 
     orbit: OrbitSpec
@@ -66,12 +70,14 @@ class GeometrySpec:
     attitude: AttitudeSpec
     earth_orientation: EarthOrientationSpec | None | Unset = UNSET
     visible_only: None | Unset | VisibleOnlySpec = UNSET
+    articulation: list[ArticulationSpec] | None | Unset = UNSET
 
 
 
 
 
     def to_dict(self) -> dict[str, Any]:
+        from ..models.articulation_spec import ArticulationSpec # noqa: PLC0415
         from ..models.attitude_spec import AttitudeSpec # noqa: PLC0415
         from ..models.earth_orientation_spec import EarthOrientationSpec # noqa: PLC0415
         from ..models.orbit_spec import OrbitSpec # noqa: PLC0415
@@ -102,6 +108,19 @@ class GeometrySpec:
         else:
             visible_only = self.visible_only
 
+        articulation: list[dict[str, Any]] | None | Unset
+        if isinstance(self.articulation, Unset):
+            articulation = UNSET
+        elif isinstance(self.articulation, list):
+            articulation = []
+            for articulation_type_0_item_data in self.articulation:
+                articulation_type_0_item = articulation_type_0_item_data.to_dict()
+                articulation.append(articulation_type_0_item)
+
+
+        else:
+            articulation = self.articulation
+
 
         field_dict: dict[str, Any] = {}
 
@@ -115,6 +134,8 @@ class GeometrySpec:
             field_dict["earth_orientation"] = earth_orientation
         if visible_only is not UNSET:
             field_dict["visible_only"] = visible_only
+        if articulation is not UNSET:
+            field_dict["articulation"] = articulation
 
         return field_dict
 
@@ -122,6 +143,7 @@ class GeometrySpec:
 
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
+        from ..models.articulation_spec import ArticulationSpec # noqa: PLC0415
         from ..models.attitude_spec import AttitudeSpec # noqa: PLC0415
         from ..models.earth_orientation_spec import EarthOrientationSpec # noqa: PLC0415
         from ..models.orbit_spec import OrbitSpec # noqa: PLC0415
@@ -189,6 +211,31 @@ class GeometrySpec:
         visible_only = _parse_visible_only(d.pop("visible_only", UNSET))
 
 
+        def _parse_articulation(data: object) -> list[ArticulationSpec] | None | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            try:
+                if not isinstance(data, list):
+                    raise TypeError()
+                articulation_type_0 = []
+                _articulation_type_0 = data
+                for articulation_type_0_item_data in (_articulation_type_0):
+                    articulation_type_0_item = ArticulationSpec.from_dict(articulation_type_0_item_data)
+
+
+
+                    articulation_type_0.append(articulation_type_0_item)
+
+                return articulation_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            return cast(list[ArticulationSpec] | None | Unset, data)
+
+        articulation = _parse_articulation(d.pop("articulation", UNSET))
+
+
         geometry_spec = cls(
             orbit=orbit,
             site=site,
@@ -196,6 +243,7 @@ class GeometrySpec:
             attitude=attitude,
             earth_orientation=earth_orientation,
             visible_only=visible_only,
+            articulation=articulation,
         )
 
         return geometry_spec

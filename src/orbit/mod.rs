@@ -16,6 +16,7 @@
 //! The quasi-inertial frame throughout is TEME (SGP4's true equator, mean equinox of
 //! date); attitude quaternions are body → TEME.
 
+pub mod aem;
 pub mod attitude;
 pub mod frames;
 pub mod pass;

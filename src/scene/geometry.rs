@@ -118,6 +118,8 @@ fn only(a: &AttitudeSpec, allowed: &[&str]) -> Result<(), ValidationError> {
         ("series", a.series.is_some()),
         ("inertia_kg_m2", a.inertia_kg_m2.is_some()),
         ("omega_deg_s", a.omega_deg_s.is_some()),
+        ("text", a.text.is_some()),
+        ("secondary", a.secondary.is_some()),
     ];
     for (name, present) in given {
         if present && !allowed.contains(&name) {
@@ -152,8 +154,17 @@ fn attitude(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, Vali
             })
         }
         "sun-pointing" => {
-            only(a, &[])?;
-            Ok(Law::SunPointing)
+            only(a, &["axis", "secondary"])?;
+            let axis = direction(&att("axis"), a.axis.unwrap_or([0.0, 0.0, 1.0]))?;
+            let second = direction(&att("secondary"), a.secondary.unwrap_or([1.0, 0.0, 0.0]))?;
+            let across = second - axis * axis.dot(second);
+            if across.length() < 1e-6 {
+                return err(att("secondary"), "must not lie along `axis`");
+            }
+            Ok(Law::SunPointing {
+                axis,
+                secondary: across.normalize(),
+            })
         }
         "inertial" => {
             only(a, &["quaternion"])?;
@@ -165,9 +176,10 @@ fn attitude(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, Vali
         "spin" => spin(a),
         "quaternions" => quaternion_series(a, start, stop),
         "tumble" => tumble(a, start, stop),
+        "aem" => aem(a, start, stop),
         other => err(
             att("law"),
-            format!("unknown law `{other}`; expected nadir, sun-pointing, inertial, spin, quaternions or tumble"),
+            format!("unknown law `{other}`; expected nadir, sun-pointing, inertial, spin, quaternions, tumble or aem"),
         ),
     }
 }
@@ -243,6 +255,36 @@ fn quaternion_series(
             format!(
                 "covers {first} s to {last} s after times.start, but the window runs \
                  from 0 to {span} s: the series must cover it (no extrapolation)"
+            ),
+        );
+    }
+    Ok(Law::Quaternions { series })
+}
+
+/// Law `aem`: a CCSDS AEM's quaternions (body → TEME), SLERP between them, covering the
+/// window from `start` to `stop`.
+fn aem(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, ValidationError> {
+    only(a, &["text"])?;
+    let Some(text) = &a.text else {
+        return err(
+            att("text"),
+            "is required by law `aem` (the message's KVN text)",
+        );
+    };
+    let msg = crate::orbit::aem::parse(text).map_err(|m| ValidationError::new(att("text"), m))?;
+    let series: Vec<(f64, DQuat)> = msg
+        .samples
+        .iter()
+        .map(|(t, q)| (t.seconds_since(start), *q))
+        .collect();
+    let span = stop.seconds_since(start);
+    let (first, last) = (series[0].0, series[series.len() - 1].0);
+    if first > 0.0 || last < span {
+        return err(
+            att("text"),
+            format!(
+                "the message's data cover {first} s to {last} s after times.start, but the \
+                 window runs from 0 to {span} s: they must cover it (no extrapolation)"
             ),
         );
     }

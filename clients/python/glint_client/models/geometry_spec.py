@@ -45,7 +45,9 @@ class GeometrySpec:
             attitude (AttitudeSpec): An attitude law: body → TEME at each epoch. `law` and its parameters:
                 - `nadir`: body +z at the geocentre, +y along −(r×v), +x completing the set (along
                   the velocity on a circular orbit); optional `yaw_deg` about +z (default 0).
-                - `sun-pointing`: body +z at the Sun, +x towards the TEME pole.
+                - `sun-pointing`: the body `axis` (default [0, 0, 1]) at the Sun, the body
+                  `secondary` axis (default [1, 0, 0]; its part perpendicular to `axis`) towards the
+                  TEME pole projected across the Sun's direction.
                 - `inertial`: a fixed `quaternion` [w, x, y, z] body → TEME.
                 - `spin`: about the TEME `axis` at `rate_deg_s`, `phase_deg` at `times.start`
                   (default 0), after the optional `quaternion` (default identity).
@@ -57,6 +59,10 @@ class GeometrySpec:
                   (body-frame angular velocity at `times.start`) and `quaternion` (body → TEME
                   then, default identity). Closed form when two principal moments are equal;
                   otherwise a 6th-order splitting integrator.
+                - `aem`: a CCSDS Attitude Ephemeris Message as KVN `text` (v1 with `QUATERNION_TYPE`
+                  FIRST or LAST, or v2, scalar last), quaternion data in TEME (`REF_FRAME_A`/`B`: TEME
+                  and `SC_BODY_n`, either way round, `ATTITUDE_DIR` A2B or B2A; A2B turns frame A's
+                  axes onto frame B's), SLERP between lines; the data must cover the window.
             earth_orientation (EarthOrientationSpec | None | Unset):
             visible_only (None | Unset | VisibleOnlySpec):
             articulation (list[ArticulationSpec] | None | Unset): Parts of the mesh that turn about hinges each epoch (solar

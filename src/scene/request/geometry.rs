@@ -79,8 +79,8 @@ pub struct AngleSample {
     pub angle_deg: f64,
 }
 
-/// The element set: a TLE (2 lines, or 3 with the name first) or a CCSDS OMM in its JSON
-/// form. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
+/// The orbit: a TLE (2 lines, or 3 with the name first), a CCSDS OMM in its JSON form, or
+/// a CCSDS OEM ephemeris. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
 /// within 30 days of the element set's epoch.
 #[derive(Debug, Clone, Default, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -96,6 +96,11 @@ pub struct OrbitSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(value_type = Option<Object>)]
     pub omm: Option<serde_json::Value>,
+    /// A CCSDS OEM (KVN text) instead of an element set, for precise orbits: states in
+    /// TEME (EME2000/GCRF/ICRF are refused), interpolated by Lagrange polynomials of its
+    /// `INTERPOLATION_DEGREE` (default 7); the window must lie within its states.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub oem: Option<String>,
 }
 
 /// A ground site on the WGS-84 ellipsoid.

@@ -37,8 +37,8 @@ class GeometrySpec:
     time). The inertial frame of attitudes is TEME (true equator, mean equinox of date).
 
         Attributes:
-            orbit (OrbitSpec): The element set: a TLE (2 lines, or 3 with the name first) or a CCSDS OMM in its JSON
-                form. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
+            orbit (OrbitSpec): The orbit: a TLE (2 lines, or 3 with the name first), a CCSDS OMM in its JSON form, or
+                a CCSDS OEM ephemeris. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
                 within 30 days of the element set's epoch.
             site (SiteSpec): A ground site on the WGS-84 ellipsoid.
             times (TimesSpec): The window: epochs at `start`, `start + step_s`, … up to `stop` inclusive.

@@ -1,5 +1,6 @@
 //! Geometry: the triangle mesh, OBJ parsing, coplanar faces, convexity, ray casting.
 
+pub mod articulation;
 pub mod basis;
 pub mod builtin;
 pub mod bvh;

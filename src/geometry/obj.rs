@@ -7,6 +7,21 @@ use glam::DVec3;
 /// `usemtl` name; faces before any `usemtl` take material 0. Polygons are
 /// fan-triangulated; normals and texture coordinates are ignored (winding gives the normal).
 pub fn parse(text: &str, material_names: &[&str]) -> Result<Mesh, String> {
+    parse_grouped(text, material_names).map(|g| g.mesh)
+}
+
+/// A mesh with its triangles' named groups (`g` or `o` lines).
+#[derive(Debug, Clone, Default)]
+pub struct Grouped {
+    pub mesh: Mesh,
+    /// The group names, in order of first appearance.
+    pub names: Vec<String>,
+    /// Per triangle, the index of its group in `names`, or `u32::MAX` for none.
+    pub group_of: Vec<u32>,
+}
+
+/// [`parse`], keeping each triangle's group (`g` or `o`; faces before any are in none).
+pub fn parse_grouped(text: &str, material_names: &[&str]) -> Result<Grouped, String> {
     for (number, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         let first = words.next();
@@ -56,8 +71,21 @@ pub fn parse(text: &str, material_names: &[&str]) -> Result<Mesh, String> {
     })
     .map_err(|e| format!("cannot parse OBJ text: {e}"))?;
     let mut mesh = Mesh::default();
+    let (mut names, mut group_of) = (Vec::<String>::new(), Vec::new());
     for model in &models {
         let m = &model.mesh;
+        // tobj names a model before any `g`/`o` line "unnamed_object"
+        let group = if model.name == "unnamed_object" {
+            u32::MAX
+        } else {
+            match names.iter().position(|n| *n == model.name) {
+                Some(i) => i as u32,
+                None => {
+                    names.push(model.name.clone());
+                    (names.len() - 1) as u32
+                }
+            }
+        };
         let base = mesh.vertices.len() as u32;
         for p in m.positions.chunks_exact(3) {
             mesh.vertices.push(DVec3::new(p[0], p[1], p[2]));
@@ -66,10 +94,15 @@ pub fn parse(text: &str, material_names: &[&str]) -> Result<Mesh, String> {
         for t in m.indices.chunks_exact(3) {
             mesh.triangles.push([base + t[0], base + t[1], base + t[2]]);
             mesh.material_ids.push(material);
+            group_of.push(group);
         }
     }
     if mesh.triangles.is_empty() {
         return Err("OBJ text has no faces".into());
     }
-    Ok(mesh)
+    Ok(Grouped {
+        mesh,
+        names,
+        group_of,
+    })
 }

@@ -6,6 +6,7 @@
 //!                         → per face: BRDF × cosines × area × visible fraction → EpochResult
 //! ```
 
+pub mod articulated;
 pub mod eq12;
 pub mod image;
 pub mod methods;
@@ -315,28 +316,72 @@ fn observe(scene: &Scene, epochs: &mut [EpochResult]) {
     }
 }
 
-/// [`simulate_with`] for one scene, progress counted but its total left as it is.
-fn simulate_counted(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
-    let start = Instant::now();
-    // `centroid` with subdivisions samples a refined copy of the mesh
-    let refined = methods::refined_for_centroid(scene);
-    let scene = refined.as_ref().unwrap_or(scene);
-    let prepared = Prepared::new(scene);
-    let rays = AtomicU64::new(0);
-    let epochs: Vec<Option<EpochResult>> = scene
-        .epochs
+/// What a request's preparation tells its summary.
+pub struct PreparedInfo {
+    pub faces: usize,
+    pub method: String,
+    pub convex: bool,
+}
+
+impl PreparedInfo {
+    fn of(p: &Prepared) -> PreparedInfo {
+        PreparedInfo {
+            faces: p.faces.len(),
+            method: p.method.clone(),
+            convex: p.convex,
+        }
+    }
+}
+
+/// The epochs `which` (indices into `epochs`) of a prepared scene, in parallel, each
+/// counted in `progress`; `None` where cancelled.
+pub fn evaluate_epochs(
+    prepared: &Prepared,
+    epochs: &[crate::scene::Epoch],
+    which: &[usize],
+    progress: &Progress,
+    rays: &AtomicU64,
+) -> Vec<Option<EpochResult>> {
+    which
         .par_iter()
-        .map_init(eq12::Scratch::default, |scratch, epoch| {
+        .map_init(eq12::Scratch::default, |scratch, &i| {
             if progress.is_cancelled() {
                 return None;
             }
             let (result, n) =
-                eq12::evaluate(&prepared, epoch, scratch, &|| progress.is_cancelled());
+                eq12::evaluate(prepared, &epochs[i], scratch, &|| progress.is_cancelled());
             rays.fetch_add(n, Ordering::Relaxed);
             progress.done.fetch_add(1, Ordering::Relaxed);
             Some(result)
         })
-        .collect();
+        .collect()
+}
+
+/// [`simulate_with`] for one scene, progress counted but its total left as it is.
+fn simulate_counted(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
+    let start = Instant::now();
+    let rays = AtomicU64::new(0);
+    let all: Vec<usize> = (0..scene.epochs.len()).collect();
+    let (epochs, info, thumbnails) = match &scene.articulation {
+        Some(a) => articulated::simulate(scene, a, progress, &rays)?,
+        None => {
+            // `centroid` with subdivisions samples a refined copy of the mesh
+            let refined = methods::refined_for_centroid(scene);
+            let scene = refined.as_ref().unwrap_or(scene);
+            let prepared = Prepared::new(scene);
+            let epochs = evaluate_epochs(&prepared, &scene.epochs, &all, progress, &rays);
+            // Images only when asked for: a light curve without them pays nothing.
+            let thumbnails = match &scene.thumbnails {
+                Some(spec) if !progress.is_cancelled() => Some(
+                    crate::render::Renderer::with_faces(scene, prepared.faces.clone())
+                        .thumbnails_until(spec, &|| progress.is_cancelled())
+                        .ok_or(Cancelled)?,
+                ),
+                _ => None,
+            };
+            (epochs, PreparedInfo::of(&prepared), thumbnails)
+        }
+    };
     if progress.is_cancelled() {
         return Err(Cancelled);
     }
@@ -354,26 +399,17 @@ fn simulate_counted(scene: &Scene, progress: &Progress) -> Result<Response, Canc
         }
     }
     observe(scene, &mut epochs);
-    // Images only when asked for: a light curve without them pays nothing.
-    let thumbnails = match &scene.thumbnails {
-        None => None,
-        Some(spec) => Some(
-            crate::render::Renderer::with_faces(scene, prepared.faces.clone())
-                .thumbnails_until(spec, &|| progress.is_cancelled())
-                .ok_or(Cancelled)?,
-        ),
-    };
     let (materials, mut warnings) = material_albedos(scene);
     warnings.extend(scene.warnings.iter().cloned());
     Ok(Response {
         summary: Summary {
             epochs: epochs.len(),
             triangles: scene.mesh.triangles.len(),
-            faces: prepared.faces.len(),
+            faces: info.faces,
             rays: rays.load(Ordering::Relaxed),
             elapsed_ms: start.elapsed().as_secs_f64() * 1e3,
-            method: prepared.method.clone(),
-            convex: prepared.convex,
+            method: info.method,
+            convex: info.convex,
             materials,
         },
         epochs,

@@ -24,9 +24,10 @@ pub enum Law {
     /// the negative orbit normal −(r×v), +x completing the right-handed set (along the
     /// velocity for a circular orbit); then turned by `yaw` about +z.
     Nadir { yaw: f64 },
-    /// Body +z at the Sun, +x towards the TEME pole (z axis) projected across the
-    /// Sun's direction (the TEME x axis if the Sun were at the pole).
-    SunPointing,
+    /// The unit body `axis` at the Sun, the body `secondary` (unit, perpendicular to
+    /// `axis`) towards the TEME pole (z axis) projected across the Sun's direction (the
+    /// TEME x axis if the Sun were at the pole). Default +z and +x.
+    SunPointing { axis: DVec3, secondary: DVec3 },
     /// A fixed body → TEME quaternion.
     Inertial { q: DQuat },
     /// Rotation about the fixed TEME unit `axis` at `rate`, `phase` at the window's
@@ -59,7 +60,7 @@ impl Law {
     fn at(&self, s: &State) -> DQuat {
         match self {
             Law::Nadir { yaw } => nadir(s.r, s.v, *yaw),
-            Law::SunPointing => sun_pointing(s.sun),
+            Law::SunPointing { axis, secondary } => sun_pointing_axes(s.sun, *axis, *secondary),
             Law::Inertial { q } => *q,
             Law::Spin {
                 axis,
@@ -104,6 +105,17 @@ pub fn sun_pointing(sun: DVec3) -> DQuat {
     let x = perpendicular(z, DVec3::Z);
     let y = z.cross(x);
     DQuat::from_mat3(&DMat3::from_cols(x, y, z)).normalize()
+}
+
+/// Unit body `axis` at the Sun, unit body `secondary` (perpendicular to it) towards the
+/// TEME pole: the rotation taking (axis, secondary, axis × secondary) onto (Sun, pole
+/// across it, their cross product).
+pub fn sun_pointing_axes(sun: DVec3, axis: DVec3, secondary: DVec3) -> DQuat {
+    let p = sun.normalize();
+    let s = perpendicular(p, DVec3::Z);
+    let target = DMat3::from_cols(p, s, p.cross(s));
+    let body = DMat3::from_cols(axis, secondary, axis.cross(secondary));
+    DQuat::from_mat3(&(target * body.transpose())).normalize()
 }
 
 /// SLERP in a series of (time, quaternion), times increasing; clamped at the ends.

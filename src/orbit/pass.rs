@@ -60,9 +60,43 @@ pub fn hidden_fraction(r: DVec3, sun: DVec3) -> f64 {
     eclipse::hidden_fraction(a_s, a_e, cos.acos())
 }
 
-/// The geometry at `t`; an error when SGP4 fails there.
+/// Where an orbit's TEME state comes from: SGP4 on an element set, or an ephemeris.
+pub trait Propagate {
+    /// TEME position (m) and velocity (m/s) at `t`, or why there is none.
+    fn teme_at(&self, t: UtcTime) -> Result<(DVec3, DVec3), String>;
+}
+
+impl Propagate for ElementSet {
+    fn teme_at(&self, t: UtcTime) -> Result<(DVec3, DVec3), String> {
+        ElementSet::teme_at(self, t)
+    }
+}
+
+impl Propagate for super::oem::Ephemeris {
+    fn teme_at(&self, t: UtcTime) -> Result<(DVec3, DVec3), String> {
+        super::oem::Ephemeris::teme_at(self, t)
+    }
+}
+
+/// An orbit: an element set (SGP4) or a CCSDS OEM's states.
+#[derive(Debug, Clone)]
+pub enum Orbit {
+    Sgp4(Box<ElementSet>),
+    Oem(super::oem::Ephemeris),
+}
+
+impl Propagate for Orbit {
+    fn teme_at(&self, t: UtcTime) -> Result<(DVec3, DVec3), String> {
+        match self {
+            Orbit::Sgp4(s) => s.teme_at(t),
+            Orbit::Oem(e) => e.teme_at(t),
+        }
+    }
+}
+
+/// The geometry at `t`; an error when the orbit has no state there.
 pub fn at(
-    set: &ElementSet,
+    set: &impl Propagate,
     site: &Site,
     eop: &EarthOrientation,
     t: UtcTime,

@@ -231,28 +231,38 @@ impl<'a> Renderer<'a> {
             .par_iter()
             .map(|&i| self.render_until(&self.scene.epochs[i], spec.size, spec.samples, cancelled))
             .collect::<Option<_>>()?;
-        let radiances: Vec<&[f32]> = images.iter().map(|im| im.radiance.as_slice()).collect();
-        let whites = exposure::white_levels(spec.exposure, &radiances);
-        let b64 = base64::engine::general_purpose::STANDARD;
-        let thumbnails = spec
+        let times: Vec<f64> = spec
             .epochs
-            .par_iter()
-            .zip(images.par_iter())
-            .zip(whites.par_iter())
-            .map(|((&i, img), &white)| {
-                let grey = exposure::to_grey(&img.radiance, white, spec.exposure == Exposure::Log);
-                Thumbnail {
-                    epoch: i,
-                    t: self.scene.epochs[i].t,
-                    size: img.size,
-                    metres_per_pixel: img.metres_per_pixel(),
-                    exposure_w_m2_sr: white,
-                    png_base64: b64.encode(png::encode_grey(&grey, img.size)),
-                }
-            })
+            .iter()
+            .map(|&i| self.scene.epochs[i].t)
             .collect();
-        Some(thumbnails)
+        Some(encode(spec, &images, &times))
     }
+}
+
+/// The PNG thumbnails of rendered `images` (one per `spec.epochs`, at `times`), exposed
+/// together as `spec.exposure` says.
+pub fn encode(spec: &Thumbnails, images: &[RadiometricImage], times: &[f64]) -> Vec<Thumbnail> {
+    let radiances: Vec<&[f32]> = images.iter().map(|im| im.radiance.as_slice()).collect();
+    let whites = exposure::white_levels(spec.exposure, &radiances);
+    let b64 = base64::engine::general_purpose::STANDARD;
+    spec.epochs
+        .par_iter()
+        .zip(times.par_iter())
+        .zip(images.par_iter())
+        .zip(whites.par_iter())
+        .map(|(((&i, &t), img), &white)| {
+            let grey = exposure::to_grey(&img.radiance, white, spec.exposure == Exposure::Log);
+            Thumbnail {
+                epoch: i,
+                t,
+                size: img.size,
+                metres_per_pixel: img.metres_per_pixel(),
+                exposure_w_m2_sr: white,
+                png_base64: b64.encode(png::encode_grey(&grey, img.size)),
+            }
+        })
+        .collect()
 }
 
 /// Renders epoch `epoch` (index into `scene.epochs`) of a scene: the radiometric image,

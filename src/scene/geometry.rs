@@ -2,18 +2,17 @@
 //! the boundary (every error naming its field) and turned into body-frame epochs by
 //! [`crate::orbit`].
 
-use super::request::{
-    AttitudeSpec, EarthOrientationSpec, GeometrySpec, InertiaSpec, OrbitSpec, TimeSpec,
-};
+use super::request::{AttitudeSpec, EarthOrientationSpec, GeometrySpec, OrbitSpec, TimeSpec};
 use super::{Epoch, Limits, Sky, ValidationError};
-use crate::orbit::attitude::{Law, State, Tumble};
+use crate::orbit::attitude::{Law, State};
 use crate::orbit::frames::EarthOrientation;
+use crate::orbit::pass::Orbit;
 use crate::orbit::site::Site;
 use crate::orbit::time::parse_utc;
 use crate::orbit::tle::ElementSet;
 use crate::orbit::{pass, UtcTime};
 use crate::radiometry::EARTH_RADIUS_M;
-use glam::{DMat3, DQuat, DVec3};
+use glam::{DQuat, DVec3};
 
 /// Most epochs one `geometry` window may hold, whatever the limits (80 bytes each).
 pub const MAX_GEOMETRY_EPOCHS: usize = 10_000_000;
@@ -25,9 +24,14 @@ pub const MAX_DAYS_FROM_EPOCH: f64 = 30.0;
 /// each: about ten seconds of one core).
 pub const MAX_TUMBLE_STEPS: f64 = 5e7;
 
+mod tumble;
+use tumble::tumble;
+
 /// The epochs, what the site sees at each, and warnings for the response.
 pub struct Built {
     pub epochs: Vec<Epoch>,
+    /// Unix seconds of `times.start`: what series times in seconds count from.
+    pub start_unix: f64,
     pub sky: Vec<Sky>,
     pub warnings: Vec<String>,
 }
@@ -66,18 +70,27 @@ fn direction(field: &str, v: [f64; 3]) -> Result<DVec3, ValidationError> {
     Ok(d / l)
 }
 
-fn element_set(spec: &OrbitSpec) -> Result<ElementSet, ValidationError> {
-    match (&spec.tle, &spec.omm) {
-        (Some(lines), None) => ElementSet::from_tle(lines).map_err(|e| {
-            let field = match e.line {
-                Some(i) => format!("geometry.orbit.tle[{i}]"),
-                None => "geometry.orbit.tle".to_string(),
-            };
-            ValidationError::new(field, e.message)
-        }),
-        (None, Some(omm)) => ElementSet::from_omm_json(omm)
+fn element_set(spec: &OrbitSpec) -> Result<Orbit, ValidationError> {
+    match (&spec.tle, &spec.omm, &spec.oem) {
+        (Some(lines), None, None) => ElementSet::from_tle(lines)
+            .map(|s| Orbit::Sgp4(Box::new(s)))
+            .map_err(|e| {
+                let field = match e.line {
+                    Some(i) => format!("geometry.orbit.tle[{i}]"),
+                    None => "geometry.orbit.tle".to_string(),
+                };
+                ValidationError::new(field, e.message)
+            }),
+        (None, Some(omm), None) => ElementSet::from_omm_json(omm)
+            .map(|s| Orbit::Sgp4(Box::new(s)))
             .map_err(|e| ValidationError::new("geometry.orbit.omm", e.message)),
-        _ => err("geometry.orbit", "give exactly one of `tle` or `omm`"),
+        (None, None, Some(oem)) => crate::orbit::oem::parse(oem)
+            .map(Orbit::Oem)
+            .map_err(|m| ValidationError::new("geometry.orbit.oem", m)),
+        _ => err(
+            "geometry.orbit",
+            "give exactly one of `tle`, `omm` or `oem`",
+        ),
     }
 }
 
@@ -116,6 +129,8 @@ fn only(a: &AttitudeSpec, allowed: &[&str]) -> Result<(), ValidationError> {
         ("series", a.series.is_some()),
         ("inertia_kg_m2", a.inertia_kg_m2.is_some()),
         ("omega_deg_s", a.omega_deg_s.is_some()),
+        ("text", a.text.is_some()),
+        ("secondary", a.secondary.is_some()),
     ];
     for (name, present) in given {
         if present && !allowed.contains(&name) {
@@ -150,8 +165,17 @@ fn attitude(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, Vali
             })
         }
         "sun-pointing" => {
-            only(a, &[])?;
-            Ok(Law::SunPointing)
+            only(a, &["axis", "secondary"])?;
+            let axis = direction(&att("axis"), a.axis.unwrap_or([0.0, 0.0, 1.0]))?;
+            let second = direction(&att("secondary"), a.secondary.unwrap_or([1.0, 0.0, 0.0]))?;
+            let across = second - axis * axis.dot(second);
+            if across.length() < 1e-6 {
+                return err(att("secondary"), "must not lie along `axis`");
+            }
+            Ok(Law::SunPointing {
+                axis,
+                secondary: across.normalize(),
+            })
         }
         "inertial" => {
             only(a, &["quaternion"])?;
@@ -163,9 +187,10 @@ fn attitude(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, Vali
         "spin" => spin(a),
         "quaternions" => quaternion_series(a, start, stop),
         "tumble" => tumble(a, start, stop),
+        "aem" => aem(a, start, stop),
         other => err(
             att("law"),
-            format!("unknown law `{other}`; expected nadir, sun-pointing, inertial, spin, quaternions or tumble"),
+            format!("unknown law `{other}`; expected nadir, sun-pointing, inertial, spin, quaternions, tumble or aem"),
         ),
     }
 }
@@ -247,90 +272,34 @@ fn quaternion_series(
     Ok(Law::Quaternions { series })
 }
 
-/// Law `tumble`: torque-free rotation from an inertia tensor and an initial rate, its
-/// principal moments those of a rigid body and its integration over the window bounded.
-fn tumble(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, ValidationError> {
-    only(a, &["inertia_kg_m2", "omega_deg_s", "quaternion"])?;
-    let Some(inertia) = &a.inertia_kg_m2 else {
-        return err(att("inertia_kg_m2"), "is required by law `tumble`");
+/// Law `aem`: a CCSDS AEM's quaternions (body → TEME), SLERP between them, covering the
+/// window from `start` to `stop`.
+fn aem(a: &AttitudeSpec, start: UtcTime, stop: UtcTime) -> Result<Law, ValidationError> {
+    only(a, &["text"])?;
+    let Some(text) = &a.text else {
+        return err(
+            att("text"),
+            "is required by law `aem` (the message's KVN text)",
+        );
     };
-    let tensor = inertia_tensor(inertia)?;
-    let omega = DVec3::from_array(required("omega_deg_s", a.omega_deg_s, &a.law)?);
-    if !omega.is_finite() || omega.length() > 36_000.0 {
+    let msg = crate::orbit::aem::parse(text).map_err(|m| ValidationError::new(att("text"), m))?;
+    let series: Vec<(f64, DQuat)> = msg
+        .samples
+        .iter()
+        .map(|(t, q)| (t.seconds_since(start), *q))
+        .collect();
+    let span = stop.seconds_since(start);
+    let (first, last) = (series[0].0, series[series.len() - 1].0);
+    if first > 0.0 || last < span {
         return err(
-            att("omega_deg_s"),
-            "must be finite and below 36000 °/s in magnitude",
-        );
-    }
-    let tumble = Tumble::new(
-        tensor,
-        quaternion_or_identity(a)?,
-        omega * (1f64.to_radians()),
-    );
-    rigid_body_moments(tumble.moments)?;
-    let steps = tumble.steps_for(stop.seconds_since(start));
-    if steps > MAX_TUMBLE_STEPS {
-        return err(
-            att("omega_deg_s"),
+            att("text"),
             format!(
-                "too large: this triaxial tumble over the window needs {steps:.2e} \
-                 integration steps (limit {MAX_TUMBLE_STEPS:e}); shorten the window \
-                 or slow the spin"
+                "the message's data cover {first} s to {last} s after times.start, but the \
+                 window runs from 0 to {span} s: they must cover it (no extrapolation)"
             ),
         );
     }
-    Ok(Law::Tumble(tumble))
-}
-
-/// The inertia tensor (kg·m²) of `inertia_kg_m2`: principal moments, or a full tensor
-/// that must be symmetric; finite either way.
-fn inertia_tensor(inertia: &InertiaSpec) -> Result<DMat3, ValidationError> {
-    let tensor = match inertia {
-        InertiaSpec::Principal(m) => DMat3::from_diagonal(DVec3::from_array(*m)),
-        InertiaSpec::Tensor(t) => {
-            let m = DMat3::from_cols_array_2d(t).transpose();
-            let tol = 1e-9 * m.to_cols_array().iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            if (m - m.transpose())
-                .to_cols_array()
-                .iter()
-                .any(|d| d.abs() > tol)
-            {
-                return err(att("inertia_kg_m2"), "the tensor must be symmetric");
-            }
-            m
-        }
-    };
-    if !tensor.is_finite() {
-        return err(att("inertia_kg_m2"), "must hold finite numbers");
-    }
-    Ok(tensor)
-}
-
-/// Principal moments `m` (kg·m²) a rigid body can have: positive, below 1e15, and obeying
-/// the triangle inequality (a thin plate: equality).
-fn rigid_body_moments(m: DVec3) -> Result<(), ValidationError> {
-    let big = m.max_element();
-    if !(m.min_element() > 1e-12 * big && big < 1e15) {
-        return err(
-            att("inertia_kg_m2"),
-            format!(
-                "principal moments {:?} kg·m² must be positive (and below 1e15)",
-                m.to_array()
-            ),
-        );
-    }
-    let slack = 1e-9 * big;
-    if m.x + m.y < m.z - slack || m.y + m.z < m.x - slack || m.x + m.z < m.y - slack {
-        return err(
-            att("inertia_kg_m2"),
-            format!(
-                "principal moments {:?} kg·m² break the triangle inequality \
-                 (I_a + I_b ≥ I_c): no rigid body has them",
-                m.to_array()
-            ),
-        );
-    }
-    Ok(())
+    Ok(Law::Quaternions { series })
 }
 
 /// Validates `geometry` and computes its epochs (after `visible_only`).
@@ -354,6 +323,7 @@ pub fn build(g: &GeometrySpec, limits: &Limits) -> Result<Built, ValidationError
     }
     Ok(Built {
         epochs,
+        start_unix: window.start.unix(),
         sky,
         warnings,
     })
@@ -384,7 +354,7 @@ struct Window {
 /// `geometry.times` checked: a step within bounds, `stop` not before `start`, both ends
 /// within [`MAX_DAYS_FROM_EPOCH`] of the element set's epoch, and no more epochs than the
 /// limits take.
-fn window(g: &GeometrySpec, set: &ElementSet, limits: &Limits) -> Result<Window, ValidationError> {
+fn window(g: &GeometrySpec, orbit: &Orbit, limits: &Limits) -> Result<Window, ValidationError> {
     let start =
         parse_utc(&g.times.start).map_err(|m| ValidationError::new("geometry.times.start", m))?;
     let stop =
@@ -398,6 +368,24 @@ fn window(g: &GeometrySpec, set: &ElementSet, limits: &Limits) -> Result<Window,
         ("geometry.times.start", start),
         ("geometry.times.stop", stop),
     ] {
+        let set = match orbit {
+            Orbit::Sgp4(set) => set,
+            Orbit::Oem(e) => {
+                let (first, last) = e.span();
+                if t.seconds_since(first) < 0.0 || t.seconds_since(last) > 0.0 {
+                    return err(
+                        field,
+                        format!(
+                            "lies outside the ephemeris, which covers {} to {} (Unix s): no \
+                             extrapolation",
+                            first.unix(),
+                            last.unix()
+                        ),
+                    );
+                }
+                continue;
+            }
+        };
         let days = t.seconds_since(set.epoch) / 86_400.0;
         if days.abs() > MAX_DAYS_FROM_EPOCH {
             return err(
@@ -452,7 +440,7 @@ fn visible_only(g: &GeometrySpec) -> Result<(Option<f64>, Option<f64>), Validati
 /// The object and the site at every epoch of the window that `visible_only` keeps; an
 /// error when SGP4 fails, the orbit has decayed, or no epoch is kept.
 fn visible_instants(
-    set: &ElementSet,
+    set: &Orbit,
     site: &Site,
     eop: &EarthOrientation,
     window: &Window,
@@ -465,7 +453,7 @@ fn visible_instants(
         let at = pass::at(set, site, eop, t).map_err(|m| {
             ValidationError::new(
                 "geometry.orbit",
-                format!("SGP4 fails {:.0} s after times.start: {m}", k as f64 * step),
+                format!("no state {:.0} s after times.start: {m}", k as f64 * step),
             )
         })?;
         if at.r.length() <= EARTH_RADIUS_M {

@@ -203,6 +203,9 @@ pub struct Scene {
     /// The band in wavelength bins, each with its materials, when a material depends on
     /// wavelength (empty otherwise: the band integral factors out of the face sum).
     pub spectral: Vec<SpectralBin>,
+    /// Hinged parts and their laws (`None`: the mesh is rigid). `mesh` is then the
+    /// reference pose (every angle 0), its vertices split between links.
+    pub articulation: Option<crate::geometry::articulation::Articulation>,
 }
 
 /// One wavelength bin of the band: its share of the Sun's in-band irradiance and every

@@ -26,6 +26,13 @@ const EXAMPLES: &[(&str, &str)] = &[
         "rocket-body-tumbling-pass",
         include_str!("../../scenes/rocket-body-tumbling-pass.json"),
     ),
+    (
+        "box-wing-sun-tracking-pass",
+        include_str!("../../scenes/box-wing-sun-tracking-pass.json"),
+    ),
+    ("iss-pass-v", include_str!("../../scenes/iss-pass-v.json")),
+    // a tangle of sheets that shadow each other: the methods' hard case
+    ("hard", include_str!("../../scenes/hard.json")),
 ];
 
 /// A built-in object and its example request.
@@ -98,4 +105,36 @@ pub fn summaries() -> &'static [SceneSummary] {
         }
         v
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every request in `scenes/` is served by `GET /v1/scenes/{name}` under its file's
+    /// name, listed with its URL, and is a valid request.
+    #[test]
+    fn every_example_in_scenes_is_listed() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let mut names = Vec::new();
+        for entry in std::fs::read_dir(dir).expect("scenes/") {
+            let path = entry.expect("entry").path();
+            if path.extension().is_some_and(|e| e == "json") {
+                let name = path.file_stem().unwrap().to_string_lossy().to_string();
+                let text = std::fs::read_to_string(&path).expect("readable");
+                assert_eq!(example(&name), Some(text.as_str()), "{name} is not served");
+                let listed = summaries().iter().find(|s| s.name == name);
+                let url = listed.and_then(|s| s.example_url.clone());
+                assert_eq!(
+                    url,
+                    Some(format!("/v1/scenes/{name}")),
+                    "{name} is not listed"
+                );
+                crate::Scene::from_json(&text, &crate::Limits::unlimited())
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                names.push(name);
+            }
+        }
+        assert!(names.len() >= 14, "{names:?}");
+    }
 }

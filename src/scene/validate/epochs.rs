@@ -19,6 +19,8 @@ pub(super) struct Epochs {
     pub sky: Vec<Sky>,
     /// Notes for the response (from `geometry`).
     pub warnings: Vec<String>,
+    /// Unix seconds of a `geometry`'s `times.start` (0 for explicit `epochs`).
+    pub origin: f64,
 }
 
 /// The request's epochs, given (`epochs`) or computed (`geometry`, exactly one of the
@@ -58,9 +60,9 @@ pub(super) fn epochs(
     // Eq. 12 is a far-field sum (every face seen along one direction, at one range): an
     // observer inside the object's bounding sphere is no telescope
     let (centre, radius) = mesh.bounding_sphere();
-    let (given, sky, warnings) = match built {
-        Some(b) => (Some(b.epochs), b.sky, b.warnings),
-        None => (None, Vec::new(), Vec::new()),
+    let (given, sky, warnings, origin) = match built {
+        Some(b) => (Some(b.epochs), b.sky, b.warnings, b.start_unix),
+        None => (None, Vec::new(), Vec::new(), 0.0),
     };
     let from_specs = given.is_none();
     let checked: Vec<Epoch> = match given {
@@ -110,6 +112,7 @@ pub(super) fn epochs(
         epochs,
         sky,
         warnings,
+        origin,
     })
 }
 

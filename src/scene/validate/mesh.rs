@@ -7,35 +7,79 @@
 
 use super::values::err;
 use super::{Limits, ValidationError};
+use crate::geometry::obj::Grouped;
 use crate::geometry::{builtin, obj, Mesh};
-use crate::scene::request::MeshSpec;
+use crate::scene::request::{MeshSpec, PartSpec};
 use crate::scene::Material;
 use glam::DVec3;
 
 /// Largest mesh coordinate accepted, m.
 const MAX_COORDINATE_M: f64 = 1e12;
 
-/// The request's mesh, built from its one form and checked; `materials` are the request's
-/// checked materials (the mesh's material ids index them).
+/// The request's mesh, built from its one form and checked, with its triangles' named
+/// groups (OBJ `g`/`o`, inline `parts`; none for built-in objects); `materials` are the
+/// request's checked materials (the mesh's material ids index them).
 pub(super) fn mesh(
     spec: &MeshSpec,
     materials: &[Material],
     limits: &Limits,
-) -> Result<Mesh, ValidationError> {
+) -> Result<Grouped, ValidationError> {
     let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
     one_form(spec)?;
-    let mut mesh = if let Some(name) = &spec.builtin {
-        builtin_mesh(name, spec, &names)?
+    let mut g = if let Some(name) = &spec.builtin {
+        let mesh = builtin_mesh(name, spec, &names)?;
+        Grouped {
+            group_of: vec![u32::MAX; mesh.triangles.len()],
+            mesh,
+            names: Vec::new(),
+        }
     } else if let Some(text) = &spec.obj {
-        obj::parse(text, &names).map_err(|m| ValidationError::new("object.mesh.obj", m))?
+        obj::parse_grouped(text, &names).map_err(|m| ValidationError::new("object.mesh.obj", m))?
     } else {
-        inline_mesh(spec, materials.len())?
+        let mesh = inline_mesh(spec, materials.len())?;
+        let (names, group_of) = parts(spec.parts.as_deref().unwrap_or(&[]), mesh.triangles.len())?;
+        Grouped {
+            mesh,
+            names,
+            group_of,
+        }
     };
-    triangles_and_indices(&mesh, limits)?;
-    coordinates(&mesh)?;
-    no_triangle_twice(&mesh)?;
-    drop_degenerate(&mut mesh)?;
-    Ok(mesh)
+    triangles_and_indices(&g.mesh, limits)?;
+    coordinates(&g.mesh)?;
+    no_triangle_twice(&g.mesh)?;
+    drop_degenerate(&mut g)?;
+    Ok(g)
+}
+
+/// An inline mesh's `parts`: names given once, not empty; triangle indices in range, each
+/// triangle in one part at most. Returns the names and each triangle's part.
+fn parts(parts: &[PartSpec], n: usize) -> Result<(Vec<String>, Vec<u32>), ValidationError> {
+    let mut group_of = vec![u32::MAX; n];
+    let mut names = Vec::with_capacity(parts.len());
+    for (i, p) in parts.iter().enumerate() {
+        let f = format!("object.mesh.parts[{i}]");
+        if p.name.is_empty() || names.contains(&p.name) {
+            return err(format!("{f}.name"), "must be a name given once");
+        }
+        if p.triangles.is_empty() {
+            return err(format!("{f}.triangles"), "must list at least one triangle");
+        }
+        for (k, &t) in p.triangles.iter().enumerate() {
+            let tf = format!("{f}.triangles[{k}]");
+            match group_of.get(t as usize) {
+                None => return err(tf, format!("triangle {t} out of range (there are {n})")),
+                Some(&g) if g != u32::MAX => {
+                    return err(
+                        tf,
+                        format!("triangle {t} is already in part `{}`", names[g as usize]),
+                    )
+                }
+                Some(_) => group_of[t as usize] = i as u32,
+            }
+        }
+        names.push(p.name.clone());
+    }
+    Ok((names, group_of))
 }
 
 /// Exactly one of the three forms, and no option that belongs to another form.
@@ -55,6 +99,12 @@ fn one_form(spec: &MeshSpec) -> Result<(), ValidationError> {
         return err(
             "object.mesh.material_ids",
             "goes only with inline `triangles` (OBJ and built-in meshes use material names)",
+        );
+    }
+    if spec.parts.is_some() && spec.triangles.is_none() {
+        return err(
+            "object.mesh.parts",
+            "goes only with inline `triangles` (OBJ text names its groups with `g` or `o`)",
         );
     }
     if spec.detail.is_some() && spec.builtin.is_none() {
@@ -245,9 +295,10 @@ fn no_triangle_twice(mesh: &Mesh) -> Result<(), ValidationError> {
     Ok(())
 }
 
-/// Drops the triangles of (almost) no area, with their material ids; a mesh of nothing
-/// else is an error.
-fn drop_degenerate(mesh: &mut Mesh) -> Result<(), ValidationError> {
+/// Drops the triangles of (almost) no area, with their material ids and groups; a mesh of
+/// nothing else is an error.
+fn drop_degenerate(g: &mut Grouped) -> Result<(), ValidationError> {
+    let mesh = &mut g.mesh;
     // Degenerate triangles carry no area and no normal: drop them rather than fail, as
     // exporters often leave a few.
     let (_, scale) = mesh.bounding_sphere();
@@ -268,6 +319,11 @@ fn drop_degenerate(mesh: &mut Mesh) -> Result<(), ValidationError> {
         mesh.material_ids.retain(|_| {
             j += 1;
             keep[j - 1]
+        });
+        let mut k = 0;
+        g.group_of.retain(|_| {
+            k += 1;
+            keep[k - 1]
         });
     }
     Ok(())

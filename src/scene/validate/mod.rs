@@ -11,6 +11,7 @@
 //! | `illumination` | `illumination.rs` |
 //! | materials' `spectral` tables, the band's wavelength bins | `spectral.rs` |
 //! | `epochs` or `geometry` (built in [`super::geometry`]) | `epochs.rs` |
+//! | `geometry.articulation` (or `articulation`): hinges, nested hinges, split vertices | `articulation.rs` |
 //! | `observation` | `observation.rs` |
 //! | `tolerance`, `method`, `image_*`, `centroid_subdivisions` | `fidelity.rs` |
 //! | `thumbnails` | `thumbnails.rs` |
@@ -18,6 +19,7 @@
 //!
 //! `values.rs` holds the checks of one number or vector that all of them share.
 
+mod articulation;
 mod epochs;
 mod fidelity;
 mod illumination;
@@ -43,14 +45,21 @@ pub use thumbnails::{MAX_THUMBNAIL_PIXELS, MAX_THUMBNAIL_SAMPLES};
 /// Checks a whole request.
 pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError> {
     let materials = materials::materials(req)?;
-    let mesh = mesh::mesh(&req.object.mesh, &materials, limits)?;
+    let mut grouped = mesh::mesh(&req.object.mesh, &materials, limits)?;
+    let mesh = &grouped.mesh;
     let illumination = illumination::illumination(req)?;
     let (materials, spectral) = spectral::bins(req, materials, &illumination)?;
     let epochs::Epochs {
         epochs,
         sky,
         warnings,
-    } = epochs::epochs(req, limits, &mesh, &illumination)?;
+        origin,
+    } = epochs::epochs(req, limits, mesh, &illumination)?;
+    let articulation = articulation::articulation(req, &mut grouped, &materials, &epochs, origin)?;
+    let mesh = grouped.mesh;
+    if let Some(a) = &articulation {
+        articulation::observers_outside(&mesh, a, &epochs, req.geometry.is_some())?;
+    }
     let observation = req
         .observation
         .as_ref()
@@ -88,5 +97,6 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         warnings,
         observation,
         spectral,
+        articulation,
     })
 }

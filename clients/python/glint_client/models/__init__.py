@@ -1,5 +1,7 @@
 """ Contains all the data models used in inputs/outputs """
 
+from .angle_sample import AngleSample
+from .articulation_spec import ArticulationSpec
 from .attitude_spec import AttitudeSpec
 from .brdf_fit import BrdfFit
 from .brdf_fit_fixed import BrdfFitFixed
@@ -35,6 +37,7 @@ from .observation_result import ObservationResult
 from .observation_spec import ObservationSpec
 from .orbit_spec import OrbitSpec
 from .orbit_spec_omm_type_0 import OrbitSpecOmmType0
+from .part_spec import PartSpec
 from .quaternion_sample import QuaternionSample
 from .request import Request
 from .sample import Sample
@@ -50,6 +53,8 @@ from .times_spec import TimesSpec
 from .visible_only_spec import VisibleOnlySpec
 
 __all__ = (
+    "AngleSample",
+    "ArticulationSpec",
     "AttitudeSpec",
     "BrdfFit",
     "BrdfFitFixed",
@@ -85,6 +90,7 @@ __all__ = (
     "ObservationSpec",
     "OrbitSpec",
     "OrbitSpecOmmType0",
+    "PartSpec",
     "QuaternionSample",
     "Request",
     "Sample",

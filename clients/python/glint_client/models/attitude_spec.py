@@ -27,7 +27,9 @@ class AttitudeSpec:
     """ An attitude law: body → TEME at each epoch. `law` and its parameters:
     - `nadir`: body +z at the geocentre, +y along −(r×v), +x completing the set (along
       the velocity on a circular orbit); optional `yaw_deg` about +z (default 0).
-    - `sun-pointing`: body +z at the Sun, +x towards the TEME pole.
+    - `sun-pointing`: the body `axis` (default [0, 0, 1]) at the Sun, the body
+      `secondary` axis (default [1, 0, 0]; its part perpendicular to `axis`) towards the
+      TEME pole projected across the Sun's direction.
     - `inertial`: a fixed `quaternion` [w, x, y, z] body → TEME.
     - `spin`: about the TEME `axis` at `rate_deg_s`, `phase_deg` at `times.start`
       (default 0), after the optional `quaternion` (default identity).
@@ -39,6 +41,10 @@ class AttitudeSpec:
       (body-frame angular velocity at `times.start`) and `quaternion` (body → TEME
       then, default identity). Closed form when two principal moments are equal;
       otherwise a 6th-order splitting integrator.
+    - `aem`: a CCSDS Attitude Ephemeris Message as KVN `text` (v1 with `QUATERNION_TYPE`
+      FIRST or LAST, or v2, scalar last), quaternion data in TEME (`REF_FRAME_A`/`B`: TEME
+      and `SC_BODY_n`, either way round, `ATTITUDE_DIR` A2B or B2A; A2B turns frame A's
+      axes onto frame B's), SLERP between lines; the data must cover the window.
 
         Attributes:
             law (str):  Example: nadir.
@@ -50,6 +56,9 @@ class AttitudeSpec:
             series (list[QuaternionSample] | None | Unset):
             inertia_kg_m2 (list[float] | list[list[float]] | None | Unset):
             omega_deg_s (list[float] | None | Unset):
+            secondary (list[float] | None | Unset): Law `sun-pointing`: the body axis kept towards the TEME pole (default
+                [1, 0, 0]).
+            text (None | str | Unset): Law `aem`: the CCSDS AEM, KVN text.
      """
 
     law: str
@@ -61,6 +70,8 @@ class AttitudeSpec:
     series: list[QuaternionSample] | None | Unset = UNSET
     inertia_kg_m2: list[float] | list[list[float]] | None | Unset = UNSET
     omega_deg_s: list[float] | None | Unset = UNSET
+    secondary: list[float] | None | Unset = UNSET
+    text: None | str | Unset = UNSET
 
 
 
@@ -150,6 +161,22 @@ class AttitudeSpec:
         else:
             omega_deg_s = self.omega_deg_s
 
+        secondary: list[float] | None | Unset
+        if isinstance(self.secondary, Unset):
+            secondary = UNSET
+        elif isinstance(self.secondary, list):
+            secondary = self.secondary
+
+
+        else:
+            secondary = self.secondary
+
+        text: None | str | Unset
+        if isinstance(self.text, Unset):
+            text = UNSET
+        else:
+            text = self.text
+
 
         field_dict: dict[str, Any] = {}
 
@@ -172,6 +199,10 @@ class AttitudeSpec:
             field_dict["inertia_kg_m2"] = inertia_kg_m2
         if omega_deg_s is not UNSET:
             field_dict["omega_deg_s"] = omega_deg_s
+        if secondary is not UNSET:
+            field_dict["secondary"] = secondary
+        if text is not UNSET:
+            field_dict["text"] = text
 
         return field_dict
 
@@ -323,6 +354,34 @@ class AttitudeSpec:
         omega_deg_s = _parse_omega_deg_s(d.pop("omega_deg_s", UNSET))
 
 
+        def _parse_secondary(data: object) -> list[float] | None | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            try:
+                if not isinstance(data, list):
+                    raise TypeError()
+                secondary_type_0 = cast(list[float], data)
+
+                return secondary_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            return cast(list[float] | None | Unset, data)
+
+        secondary = _parse_secondary(d.pop("secondary", UNSET))
+
+
+        def _parse_text(data: object) -> None | str | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(None | str | Unset, data)
+
+        text = _parse_text(d.pop("text", UNSET))
+
+
         attitude_spec = cls(
             law=law,
             yaw_deg=yaw_deg,
@@ -333,6 +392,8 @@ class AttitudeSpec:
             series=series,
             inertia_kg_m2=inertia_kg_m2,
             omega_deg_s=omega_deg_s,
+            secondary=secondary,
+            text=text,
         )
 
         return attitude_spec

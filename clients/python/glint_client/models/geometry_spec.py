@@ -12,6 +12,7 @@ from ..types import UNSET, Unset
 from typing import cast
 
 if TYPE_CHECKING:
+  from ..models.articulation_spec import ArticulationSpec
   from ..models.attitude_spec import AttitudeSpec
   from ..models.earth_orientation_spec import EarthOrientationSpec
   from ..models.orbit_spec import OrbitSpec
@@ -36,15 +37,17 @@ class GeometrySpec:
     time). The inertial frame of attitudes is TEME (true equator, mean equinox of date).
 
         Attributes:
-            orbit (OrbitSpec): The element set: a TLE (2 lines, or 3 with the name first) or a CCSDS OMM in its JSON
-                form. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
+            orbit (OrbitSpec): The orbit: a TLE (2 lines, or 3 with the name first), a CCSDS OMM in its JSON form, or
+                a CCSDS OEM ephemeris. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
                 within 30 days of the element set's epoch.
             site (SiteSpec): A ground site on the WGS-84 ellipsoid.
             times (TimesSpec): The window: epochs at `start`, `start + step_s`, … up to `stop` inclusive.
             attitude (AttitudeSpec): An attitude law: body → TEME at each epoch. `law` and its parameters:
                 - `nadir`: body +z at the geocentre, +y along −(r×v), +x completing the set (along
                   the velocity on a circular orbit); optional `yaw_deg` about +z (default 0).
-                - `sun-pointing`: body +z at the Sun, +x towards the TEME pole.
+                - `sun-pointing`: the body `axis` (default [0, 0, 1]) at the Sun, the body
+                  `secondary` axis (default [1, 0, 0]; its part perpendicular to `axis`) towards the
+                  TEME pole projected across the Sun's direction.
                 - `inertial`: a fixed `quaternion` [w, x, y, z] body → TEME.
                 - `spin`: about the TEME `axis` at `rate_deg_s`, `phase_deg` at `times.start`
                   (default 0), after the optional `quaternion` (default identity).
@@ -56,8 +59,15 @@ class GeometrySpec:
                   (body-frame angular velocity at `times.start`) and `quaternion` (body → TEME
                   then, default identity). Closed form when two principal moments are equal;
                   otherwise a 6th-order splitting integrator.
+                - `aem`: a CCSDS Attitude Ephemeris Message as KVN `text` (v1 with `QUATERNION_TYPE`
+                  FIRST or LAST, or v2, scalar last), quaternion data in TEME (`REF_FRAME_A`/`B`: TEME
+                  and `SC_BODY_n`, either way round, `ATTITUDE_DIR` A2B or B2A; A2B turns frame A's
+                  axes onto frame B's), SLERP between lines; the data must cover the window.
             earth_orientation (EarthOrientationSpec | None | Unset):
             visible_only (None | Unset | VisibleOnlySpec):
+            articulation (list[ArticulationSpec] | None | Unset): Parts of the mesh that turn about hinges each epoch (solar
+                arrays). Absent: the
+                mesh is rigid.
      """
 
     orbit: OrbitSpec
@@ -66,12 +76,14 @@ class GeometrySpec:
     attitude: AttitudeSpec
     earth_orientation: EarthOrientationSpec | None | Unset = UNSET
     visible_only: None | Unset | VisibleOnlySpec = UNSET
+    articulation: list[ArticulationSpec] | None | Unset = UNSET
 
 
 
 
 
     def to_dict(self) -> dict[str, Any]:
+        from ..models.articulation_spec import ArticulationSpec # noqa: PLC0415
         from ..models.attitude_spec import AttitudeSpec # noqa: PLC0415
         from ..models.earth_orientation_spec import EarthOrientationSpec # noqa: PLC0415
         from ..models.orbit_spec import OrbitSpec # noqa: PLC0415
@@ -102,6 +114,19 @@ class GeometrySpec:
         else:
             visible_only = self.visible_only
 
+        articulation: list[dict[str, Any]] | None | Unset
+        if isinstance(self.articulation, Unset):
+            articulation = UNSET
+        elif isinstance(self.articulation, list):
+            articulation = []
+            for articulation_type_0_item_data in self.articulation:
+                articulation_type_0_item = articulation_type_0_item_data.to_dict()
+                articulation.append(articulation_type_0_item)
+
+
+        else:
+            articulation = self.articulation
+
 
         field_dict: dict[str, Any] = {}
 
@@ -115,6 +140,8 @@ class GeometrySpec:
             field_dict["earth_orientation"] = earth_orientation
         if visible_only is not UNSET:
             field_dict["visible_only"] = visible_only
+        if articulation is not UNSET:
+            field_dict["articulation"] = articulation
 
         return field_dict
 
@@ -122,6 +149,7 @@ class GeometrySpec:
 
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
+        from ..models.articulation_spec import ArticulationSpec # noqa: PLC0415
         from ..models.attitude_spec import AttitudeSpec # noqa: PLC0415
         from ..models.earth_orientation_spec import EarthOrientationSpec # noqa: PLC0415
         from ..models.orbit_spec import OrbitSpec # noqa: PLC0415
@@ -189,6 +217,31 @@ class GeometrySpec:
         visible_only = _parse_visible_only(d.pop("visible_only", UNSET))
 
 
+        def _parse_articulation(data: object) -> list[ArticulationSpec] | None | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            try:
+                if not isinstance(data, list):
+                    raise TypeError()
+                articulation_type_0 = []
+                _articulation_type_0 = data
+                for articulation_type_0_item_data in (_articulation_type_0):
+                    articulation_type_0_item = ArticulationSpec.from_dict(articulation_type_0_item_data)
+
+
+
+                    articulation_type_0.append(articulation_type_0_item)
+
+                return articulation_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            return cast(list[ArticulationSpec] | None | Unset, data)
+
+        articulation = _parse_articulation(d.pop("articulation", UNSET))
+
+
         geometry_spec = cls(
             orbit=orbit,
             site=site,
@@ -196,6 +249,7 @@ class GeometrySpec:
             attitude=attitude,
             earth_orientation=earth_orientation,
             visible_only=visible_only,
+            articulation=articulation,
         )
 
         return geometry_spec

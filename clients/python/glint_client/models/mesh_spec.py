@@ -11,6 +11,8 @@ from ..types import UNSET, Unset
 from ..types import UNSET, Unset
 from typing import cast
 
+if TYPE_CHECKING:
+  from ..models.part_spec import PartSpec
 
 
 
@@ -36,6 +38,9 @@ class MeshSpec:
                 20k) or `fine` (about 200k). Default: `medium`, except `box-wing`, `sphere` and
                 `plate`, which default to their original meshes (coarse: 268, 1280 and 2 triangles;
                 the box-wing's medium is the 15.5k-triangle fine-dish box-wing). Example: medium.
+            parts (list[PartSpec] | None | Unset): Inline meshes only: named groups of triangles, for `articulation` (OBJ
+                text names
+                its groups with `g` or `o`). A triangle belongs to one part at most.
      """
 
     vertices: list[list[float]] | None | Unset = UNSET
@@ -44,12 +49,14 @@ class MeshSpec:
     obj: None | str | Unset = UNSET
     builtin: None | str | Unset = UNSET
     detail: None | str | Unset = UNSET
+    parts: list[PartSpec] | None | Unset = UNSET
 
 
 
 
 
     def to_dict(self) -> dict[str, Any]:
+        from ..models.part_spec import PartSpec # noqa: PLC0415
         vertices: list[list[float]] | None | Unset
         if isinstance(self.vertices, Unset):
             vertices = UNSET
@@ -108,6 +115,19 @@ class MeshSpec:
         else:
             detail = self.detail
 
+        parts: list[dict[str, Any]] | None | Unset
+        if isinstance(self.parts, Unset):
+            parts = UNSET
+        elif isinstance(self.parts, list):
+            parts = []
+            for parts_type_0_item_data in self.parts:
+                parts_type_0_item = parts_type_0_item_data.to_dict()
+                parts.append(parts_type_0_item)
+
+
+        else:
+            parts = self.parts
+
 
         field_dict: dict[str, Any] = {}
 
@@ -125,6 +145,8 @@ class MeshSpec:
             field_dict["builtin"] = builtin
         if detail is not UNSET:
             field_dict["detail"] = detail
+        if parts is not UNSET:
+            field_dict["parts"] = parts
 
         return field_dict
 
@@ -132,6 +154,7 @@ class MeshSpec:
 
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
+        from ..models.part_spec import PartSpec # noqa: PLC0415
         d = dict(src_dict)
         def _parse_vertices(data: object) -> list[list[float]] | None | Unset:
             if data is None:
@@ -227,6 +250,31 @@ class MeshSpec:
         detail = _parse_detail(d.pop("detail", UNSET))
 
 
+        def _parse_parts(data: object) -> list[PartSpec] | None | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            try:
+                if not isinstance(data, list):
+                    raise TypeError()
+                parts_type_0 = []
+                _parts_type_0 = data
+                for parts_type_0_item_data in (_parts_type_0):
+                    parts_type_0_item = PartSpec.from_dict(parts_type_0_item_data)
+
+
+
+                    parts_type_0.append(parts_type_0_item)
+
+                return parts_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            return cast(list[PartSpec] | None | Unset, data)
+
+        parts = _parse_parts(d.pop("parts", UNSET))
+
+
         mesh_spec = cls(
             vertices=vertices,
             triangles=triangles,
@@ -234,6 +282,7 @@ class MeshSpec:
             obj=obj,
             builtin=builtin,
             detail=detail,
+            parts=parts,
         )
 
         return mesh_spec

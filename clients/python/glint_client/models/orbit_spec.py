@@ -24,8 +24,8 @@ T = TypeVar("T", bound="OrbitSpec")
 
 @_attrs_define
 class OrbitSpec:
-    """ The element set: a TLE (2 lines, or 3 with the name first) or a CCSDS OMM in its JSON
-    form. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
+    """ The orbit: a TLE (2 lines, or 3 with the name first), a CCSDS OMM in its JSON form, or
+    a CCSDS OEM ephemeris. Exactly one. Propagated by SGP4 (AFSPC-compatible mode, WGS-72); times must lie
     within 30 days of the element set's epoch.
 
         Attributes:
@@ -35,10 +35,14 @@ class OrbitSpec:
                 `MEAN_MOTION`, `ECCENTRICITY`, `INCLINATION`, `RA_OF_ASC_NODE`,
                 `ARG_OF_PERICENTER`, `MEAN_ANOMALY`, `BSTAR`, `MEAN_MOTION_DOT`,
                 `MEAN_MOTION_DDOT`, `NORAD_CAT_ID`, …). `EPOCH` is UTC without a zone suffix.
+            oem (None | str | Unset): A CCSDS OEM (KVN text) instead of an element set, for precise orbits: states in
+                TEME (EME2000/GCRF/ICRF are refused), interpolated by Lagrange polynomials of its
+                `INTERPOLATION_DEGREE` (default 7); the window must lie within its states.
      """
 
     tle: list[str] | None | Unset = UNSET
     omm: None | OrbitSpecOmmType0 | Unset = UNSET
+    oem: None | str | Unset = UNSET
 
 
 
@@ -64,6 +68,12 @@ class OrbitSpec:
         else:
             omm = self.omm
 
+        oem: None | str | Unset
+        if isinstance(self.oem, Unset):
+            oem = UNSET
+        else:
+            oem = self.oem
+
 
         field_dict: dict[str, Any] = {}
 
@@ -73,6 +83,8 @@ class OrbitSpec:
             field_dict["tle"] = tle
         if omm is not UNSET:
             field_dict["omm"] = omm
+        if oem is not UNSET:
+            field_dict["oem"] = oem
 
         return field_dict
 
@@ -120,9 +132,20 @@ class OrbitSpec:
         omm = _parse_omm(d.pop("omm", UNSET))
 
 
+        def _parse_oem(data: object) -> None | str | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            return cast(None | str | Unset, data)
+
+        oem = _parse_oem(d.pop("oem", UNSET))
+
+
         orbit_spec = cls(
             tle=tle,
             omm=omm,
+            oem=oem,
         )
 
         return orbit_spec

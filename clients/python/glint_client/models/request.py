@@ -12,6 +12,7 @@ from ..types import UNSET, Unset
 from typing import cast
 
 if TYPE_CHECKING:
+  from ..models.articulation_spec import ArticulationSpec
   from ..models.epoch_spec import EpochSpec
   from ..models.geometry_spec import GeometrySpec
   from ..models.illumination_spec import IlluminationSpec
@@ -53,6 +54,10 @@ class Request:
                 casting one ray per direction at each centroid, 0 to 8. Default 0. Example: 0.
             thumbnails (None | ThumbnailSpec | Unset):
             observation (None | ObservationSpec | Unset):
+            articulation (list[ArticulationSpec] | None | Unset): Articulated parts with explicit `epochs` (a `geometry`
+                request gives them as
+                `geometry.articulation`): the same list, an `angles` law's times on the epochs'
+                own `t` scale.
      """
 
     object_: ObjectSpec
@@ -66,12 +71,14 @@ class Request:
     centroid_subdivisions: int | None | Unset = UNSET
     thumbnails: None | ThumbnailSpec | Unset = UNSET
     observation: None | ObservationSpec | Unset = UNSET
+    articulation: list[ArticulationSpec] | None | Unset = UNSET
 
 
 
 
 
     def to_dict(self) -> dict[str, Any]:
+        from ..models.articulation_spec import ArticulationSpec # noqa: PLC0415
         from ..models.epoch_spec import EpochSpec # noqa: PLC0415
         from ..models.geometry_spec import GeometrySpec # noqa: PLC0415
         from ..models.illumination_spec import IlluminationSpec # noqa: PLC0415
@@ -155,6 +162,19 @@ class Request:
         else:
             observation = self.observation
 
+        articulation: list[dict[str, Any]] | None | Unset
+        if isinstance(self.articulation, Unset):
+            articulation = UNSET
+        elif isinstance(self.articulation, list):
+            articulation = []
+            for articulation_type_0_item_data in self.articulation:
+                articulation_type_0_item = articulation_type_0_item_data.to_dict()
+                articulation.append(articulation_type_0_item)
+
+
+        else:
+            articulation = self.articulation
+
 
         field_dict: dict[str, Any] = {}
 
@@ -181,6 +201,8 @@ class Request:
             field_dict["thumbnails"] = thumbnails
         if observation is not UNSET:
             field_dict["observation"] = observation
+        if articulation is not UNSET:
+            field_dict["articulation"] = articulation
 
         return field_dict
 
@@ -188,6 +210,7 @@ class Request:
 
     @classmethod
     def from_dict(cls: type[T], src_dict: Mapping[str, Any]) -> T:
+        from ..models.articulation_spec import ArticulationSpec # noqa: PLC0415
         from ..models.epoch_spec import EpochSpec # noqa: PLC0415
         from ..models.geometry_spec import GeometrySpec # noqa: PLC0415
         from ..models.illumination_spec import IlluminationSpec # noqa: PLC0415
@@ -355,6 +378,31 @@ class Request:
         observation = _parse_observation(d.pop("observation", UNSET))
 
 
+        def _parse_articulation(data: object) -> list[ArticulationSpec] | None | Unset:
+            if data is None:
+                return data
+            if isinstance(data, Unset):
+                return data
+            try:
+                if not isinstance(data, list):
+                    raise TypeError()
+                articulation_type_0 = []
+                _articulation_type_0 = data
+                for articulation_type_0_item_data in (_articulation_type_0):
+                    articulation_type_0_item = ArticulationSpec.from_dict(articulation_type_0_item_data)
+
+
+
+                    articulation_type_0.append(articulation_type_0_item)
+
+                return articulation_type_0
+            except (TypeError, ValueError, AttributeError, KeyError):
+                pass
+            return cast(list[ArticulationSpec] | None | Unset, data)
+
+        articulation = _parse_articulation(d.pop("articulation", UNSET))
+
+
         request = cls(
             object_=object_,
             epochs=epochs,
@@ -367,6 +415,7 @@ class Request:
             centroid_subdivisions=centroid_subdivisions,
             thumbnails=thumbnails,
             observation=observation,
+            articulation=articulation,
         )
 
         return request

@@ -35,7 +35,7 @@ use super::errors::ApiError;
 use super::jobs::{no_such_job, now_ms, Deleted, JobState, JobStatus};
 use super::limits::ServiceLimits;
 use deadpool_postgres::Pool;
-use rows::{state_of, status_of_row, STATUS_COLUMNS};
+use rows::{state_of, status_in, status_of_row, STATUS_COLUMNS};
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -189,14 +189,7 @@ impl Shared {
         tx.execute("SELECT pg_notify($1, $2)", &[&CANCEL_CHANNEL, &id])
             .await
             .map_err(PgError::from)?;
-        let row = tx
-            .query_one(
-                &format!("SELECT {STATUS_COLUMNS} FROM glint_jobs j WHERE j.id = $1"),
-                &[&id],
-            )
-            .await
-            .map_err(PgError::from)?;
-        let status = status_of_row(&row, self.ttl)?;
+        let status = status_in(&tx, id, self.ttl).await?;
         tx.commit().await.map_err(PgError::from)?;
         Ok(Deleted::Cancelled(Box::new(status)))
     }

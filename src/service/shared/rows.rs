@@ -65,3 +65,18 @@ pub(super) fn status_of_row(
     };
     Ok(status_from(&rec, done, evaluations, ttl))
 }
+
+/// The status of job `id`, read in `tx` (after a change it makes, before its commit).
+pub(super) async fn status_in(
+    tx: &deadpool_postgres::Transaction<'_>,
+    id: &str,
+    ttl: Duration,
+) -> Result<JobStatus, PgError> {
+    let row = tx
+        .query_one(
+            &format!("SELECT {STATUS_COLUMNS} FROM glint_jobs j WHERE j.id = $1"),
+            &[&id],
+        )
+        .await?;
+    status_of_row(&row, ttl)
+}

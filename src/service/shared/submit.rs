@@ -2,7 +2,7 @@
 //! chunks, then the job and its chunks stored in one transaction under a lock that makes
 //! the room and idempotency checks exact, and the workers woken.
 
-use super::rows::{kind_name, status_of_row, STATUS_COLUMNS};
+use super::rows::{kind_name, status_in, status_of_row, STATUS_COLUMNS};
 use super::{chunks, PgError, Shared, CHUNKS_CHANNEL};
 use crate::scene::{validate, Scene};
 use crate::service::errors::ApiError;
@@ -141,14 +141,7 @@ impl Shared {
         tx.execute(&format!("NOTIFY {CHUNKS_CHANNEL}"), &[])
             .await
             .map_err(PgError::from)?;
-        let row = tx
-            .query_one(
-                &format!("SELECT {STATUS_COLUMNS} FROM glint_jobs j WHERE j.id = $1"),
-                &[&id],
-            )
-            .await
-            .map_err(PgError::from)?;
-        let status = status_of_row(&row, self.ttl)?;
+        let status = status_in(&tx, &id, self.ttl).await?;
         tx.commit().await.map_err(PgError::from)?;
         Ok((status, false))
     }

@@ -196,28 +196,6 @@ impl Shared {
             .map_err(PgError::from)?;
         let unfinished = row.get::<_, i64>(0) as usize;
         let stored = row.get::<_, i64>(1) as u64;
-        if stored >= self.limits.max_result_bytes {
-            return Err(ApiError::new(
-                axum::http::StatusCode::INSUFFICIENT_STORAGE,
-                format!(
-                    "stored results take {stored} bytes (limit {}): fetch and DELETE \
-                     finished jobs to make room",
-                    self.limits.max_result_bytes
-                ),
-            ));
-        }
-        if unfinished >= self.limits.max_queued_jobs {
-            let mut e = ApiError::new(
-                axum::http::StatusCode::TOO_MANY_REQUESTS,
-                format!(
-                    "{unfinished} jobs are queued or running (limit {}); retry when some \
-                     have finished, or cancel some",
-                    self.limits.max_queued_jobs
-                ),
-            );
-            e.retry_after_s = Some(10);
-            return Err(e);
-        }
-        Ok(())
+        self.limits.room_for_a_job(stored, || unfinished)
     }
 }

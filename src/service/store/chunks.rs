@@ -1,9 +1,31 @@
-//! The writer that stores what it is given as numbered chunks, so that a result is
+//! A result's chunks: the forms a result is stored in, the size of a chunk, and the
+//! writer that stores what it is given as numbered chunks, so that a result is
 //! serialised straight into the database, never whole in memory.
 
-use super::results::{Form, CHUNK_BYTES};
 use super::StoreError;
 use std::io::Write;
+
+/// Bytes of one stored chunk. A little under a power of two: redb keeps a large value in
+/// a page of the next power of two, so 1 MiB exactly would take 2 MiB on disk.
+pub const CHUNK_BYTES: usize = (1 << 20) - 4096;
+
+/// A form in which a result is stored and served.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Form {
+    /// The result, as `serde_json` writes it.
+    Json,
+    /// The light curve as CSV ([`crate::report::csv`]); a fit has none (0 bytes).
+    Csv,
+}
+
+impl Form {
+    pub(super) fn tag(self) -> u8 {
+        match self {
+            Form::Json => 0,
+            Form::Csv => 1,
+        }
+    }
+}
 
 /// A writer that stores what it is given as numbered chunks of [`CHUNK_BYTES`] (the last
 /// shorter), so that a result is serialised straight into the database.

@@ -14,8 +14,8 @@
 //! |---|---|
 //! | the database: its tables, opening (and reopening after an I/O failure), job records and requests, the health check | `mod.rs` |
 //! | a failure of the store, and whether it is the disk's | `error.rs` |
-//! | a finished job's result: the forms it is stored and served in, written, read, removed | `results.rs` |
-//! | the writer that stores a result as numbered chunks | `chunks.rs` |
+//! | a finished job's result: written in the forms it is served in, read, removed | `results.rs` |
+//! | the forms and the chunk size; the writer that stores a result as numbered chunks | `chunks.rs` |
 //! | results kept whole by an earlier version, moved into chunks at open | `legacy.rs` |
 
 mod chunks;
@@ -25,8 +25,9 @@ mod results;
 #[cfg(test)]
 mod test_fixtures;
 
+pub use chunks::{Form, CHUNK_BYTES};
 pub use error::StoreError;
-pub use results::{Form, Output, CHUNK_BYTES};
+pub use results::Output;
 
 use results::{remove_result, write_result};
 

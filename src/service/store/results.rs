@@ -3,16 +3,12 @@
 //! chunks too; with their sizes. Read a chunk at a time, never whole (but in tests and
 //! tools).
 
-use super::chunks::Chunks;
+use super::chunks::{Chunks, Form};
 use super::{Store, StoreError, RESULT_CHUNKS, RESULT_SIZES, THUMBNAILS};
 use crate::scene::Response;
 use base64::Engine as _;
 use redb::{ReadableDatabase, WriteTransaction};
 use std::io::Write;
-
-/// Bytes of one stored chunk. A little under a power of two: redb keeps a large value in
-/// a page of the next power of two, so 1 MiB exactly would take 2 MiB on disk.
-pub const CHUNK_BYTES: usize = (1 << 20) - 4096;
 
 /// What a finished job stores.
 #[derive(Debug)]
@@ -21,24 +17,6 @@ pub enum Output {
     Lightcurve(Response),
     /// A light-curve fit's result, as its JSON: served as JSON only.
     Fit(Vec<u8>),
-}
-
-/// A form in which a result is stored and served.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Form {
-    /// The result, as `serde_json` writes it.
-    Json,
-    /// The light curve as CSV ([`crate::report::csv`]); a fit has none (0 bytes).
-    Csv,
-}
-
-impl Form {
-    pub(super) fn tag(self) -> u8 {
-        match self {
-            Form::Json => 0,
-            Form::Csv => 1,
-        }
-    }
 }
 
 impl Store {
@@ -160,6 +138,7 @@ pub(super) fn remove_result(tx: &WriteTransaction, id: &str) -> Result<u64, Stor
 #[cfg(test)]
 mod tests {
     use super::super::test_fixtures::{done_record, response, temp};
+    use super::super::CHUNK_BYTES;
     use super::*;
 
     #[test]

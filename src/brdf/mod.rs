@@ -210,6 +210,22 @@ fn diffuse_and_lobe(
     diffuse + lobe(half, cos_h)
 }
 
+/// The Beckmann distribution of microfacet slopes, exp(−tan²θ/a²)/(norm·a²·cos⁴θ) (a the
+/// RMS slope, θ the half vector's angle from the normal): `norm` π for the normalised
+/// NDF (the rough conductor's D), 1 for the paper's C. tan²θ is formed as
+/// (1 − cos²θ)/cos²θ, and the exponent is tested against −`tail` before the division, so
+/// a tiny a at a large θ gives 0, never 0·∞. Both models' one formula.
+#[inline]
+fn beckmann(cos: f64, a: f64, norm: f64, tail: f64) -> f64 {
+    let c2 = cos * cos;
+    let a2 = a * a;
+    let exponent = -(1.0 - c2) / (c2 * a2);
+    if exponent < -tail {
+        return 0.0;
+    }
+    exponent.exp() / (norm * a2 * c2 * c2)
+}
+
 /// A BRDF with its light direction `l` and view direction `v` fixed (one epoch): the
 /// half vector and the (complex) Fresnel term are computed once, so each face costs
 /// only its own cosines and slope distribution.

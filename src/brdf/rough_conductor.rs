@@ -12,7 +12,7 @@
 //! at α 1; at 89.9° and α 0.1 it is 8.6.
 
 use super::fresnel::Fresnel;
-use super::{diffuse_and_lobe, Half};
+use super::{beckmann, diffuse_and_lobe, Half};
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -82,13 +82,8 @@ impl RoughConductor {
 /// Beckmann NDF D(h) = exp(−tan²θh/α²)/(π α² cos⁴θh), sr⁻¹.
 #[inline]
 pub fn beckmann_d(cos_h: f64, alpha: f64) -> f64 {
-    let c2 = cos_h * cos_h;
-    let a2 = alpha * alpha;
-    let exponent = -(1.0 - c2) / (c2 * a2);
-    if exponent < -700.0 {
-        return 0.0;
-    }
-    exponent.exp() / (PI * a2 * c2 * c2)
+    // 0 where exp underflows
+    beckmann(cos_h, alpha, PI, 700.0)
 }
 
 /// Smith Λ for Beckmann (Walter et al. 2007 rational fit, as in pbrt-v3 and Mitsuba 3,

@@ -3,7 +3,7 @@
 //! f·cosθi·cosθr = k^D/π·cosθi·cosθr + k^M·C·V·F, which is finite at grazing angles.
 
 use super::fresnel::Fresnel;
-use super::{diffuse_and_lobe, Half};
+use super::{beckmann, diffuse_and_lobe, Half};
 use glam::DVec3;
 
 /// Parameters of Eqs. 6–8.
@@ -64,13 +64,7 @@ pub const LOBE_TAIL_EXPONENT: f64 = 54.0;
 /// tested before the division so a tiny δ at a large α gives 0, never 0·∞.
 #[inline]
 pub fn slope_distribution(cos_a: f64, slope_rms: f64) -> f64 {
-    let c2 = cos_a * cos_a;
-    let d2 = slope_rms * slope_rms;
-    let exponent = -(1.0 - c2) / (c2 * d2);
-    if exponent < -LOBE_TAIL_EXPONENT {
-        return 0.0;
-    }
-    exponent.exp() / (d2 * c2 * c2)
+    beckmann(cos_a, slope_rms, 1.0, LOBE_TAIL_EXPONENT)
 }
 
 /// The least cos² α of the half vector below which [`slope_distribution`] is exactly

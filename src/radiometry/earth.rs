@@ -124,82 +124,186 @@ pub fn sphere_with(
     rings: usize,
     azimuths: usize,
 ) -> Earthshine {
-    let d = earth.length();
-    let e = earth / d;
-    let object = -earth;
-    let o = -e; // Earth's centre → object
-    let k = (EARTH_RADIUS_M / d).min(1.0);
-    let radiance_scale = albedo * sun_irradiance / PI;
-    let lit = SunlitEarth {
-        object,
-        sun_dir,
-        radiance_scale,
-        cos_cap: (1.0 - k * k).max(0.0).sqrt(),
-        centre_dir: e,
+    let cap = VisibleCap::new(earth, sun_dir, albedo * sun_irradiance / PI);
+    let mut lit = LitBeams {
+        beams: Vec::with_capacity(2 * rings * azimuths),
+        mean: DVec3::ZERO,
+        patch: 0.0,
     };
-    let cos_psi = o.dot(sun_dir).clamp(-1.0, 1.0);
-    let psi = cos_psi.acos();
-    // azimuths about the sub-object point, from the Sun's side
-    let across = sun_dir - o * cos_psi;
-    let a = if across.length_squared() > 1e-24 {
-        across.normalize()
-    } else {
-        orthonormal_basis(o).0
-    };
-    let b = o.cross(a);
-    let theta_v = k.acos(); // the limb, on the Earth
-                            // θ ↔ e on the Earth: e = θ + γ, tan γ = R sin θ / (d − R cos θ)
-    let e_of_theta = |t: f64| t + (EARTH_RADIUS_M * t.sin()).atan2(d - EARTH_RADIUS_M * t.cos());
-    let half_pi = 0.5 * PI;
-    let mut beams = Vec::with_capacity(2 * rings * azimuths);
-    let mut mean = DVec3::ZERO;
-    let mut patch = 0.0f64;
-    let mut push = |e_ang: f64, phi: f64, w: f64, beams: &mut Vec<Beam>| {
+    let gauss = gauss_legendre(rings);
+    cap.whole_rings(&gauss, azimuths, &mut lit);
+    cap.crescent_arcs(&gauss, azimuths, &mut lit);
+    let LitBeams {
+        beams,
+        mean,
+        mut patch,
+    } = lit;
+    if beams.is_empty() {
+        patch = 0.0;
+    }
+    let shadow_dir = (mean.length_squared() > 0.0).then(|| mean.normalize());
+    Earthshine {
+        beams,
+        shadow_dir,
+        sunlit: Some(cap.sunlit()),
+        patch,
+    }
+}
+
+/// The Earth's visible cap seen from the object, with the azimuths about the
+/// sub-object point measured from the Sun's side.
+struct VisibleCap {
+    /// The object's position relative to the Earth's centre, m.
+    object: DVec3,
+    /// The object's distance from the Earth's centre, m.
+    d: f64,
+    /// Unit vector object → Earth's centre.
+    e: DVec3,
+    /// Unit vector Earth's centre → object.
+    o: DVec3,
+    /// Azimuth 0 (towards the Sun) and 90° about `o`.
+    a: DVec3,
+    b: DVec3,
+    /// R_E/d, at most 1.
+    k: f64,
+    sun_dir: DVec3,
+    /// cos ψ and ψ, the Earth phase (the Sun's angle from the sub-object point).
+    cos_psi: f64,
+    psi: f64,
+    /// ρE_s/π, W/(m²·sr).
+    radiance_scale: f64,
+}
+
+/// The beams placed so far, their irradiance-weighted direction sum and the largest
+/// extent of sky one stands for (rad).
+struct LitBeams {
+    beams: Vec<Beam>,
+    mean: DVec3,
+    patch: f64,
+}
+
+impl VisibleCap {
+    fn new(earth: DVec3, sun_dir: DVec3, radiance_scale: f64) -> Self {
+        let d = earth.length();
+        let e = earth / d;
+        let o = -e; // Earth's centre → object
+        let k = (EARTH_RADIUS_M / d).min(1.0);
+        let cos_psi = o.dot(sun_dir).clamp(-1.0, 1.0);
+        let psi = cos_psi.acos();
+        let across = sun_dir - o * cos_psi;
+        let a = if across.length_squared() > 1e-24 {
+            across.normalize()
+        } else {
+            orthonormal_basis(o).0
+        };
+        let b = o.cross(a);
+        VisibleCap {
+            object: -earth,
+            d,
+            e,
+            o,
+            a,
+            b,
+            k,
+            sun_dir,
+            cos_psi,
+            psi,
+            radiance_scale,
+        }
+    }
+
+    /// The sunlit Earth for the rules that look up its radiance along any direction.
+    fn sunlit(&self) -> SunlitEarth {
+        let k = self.k;
+        SunlitEarth {
+            object: self.object,
+            sun_dir: self.sun_dir,
+            radiance_scale: self.radiance_scale,
+            cos_cap: (1.0 - k * k).max(0.0).sqrt(),
+            centre_dir: self.e,
+        }
+    }
+
+    /// The limb's angle from the sub-object point, on the Earth.
+    fn limb(&self) -> f64 {
+        self.k.acos()
+    }
+
+    /// The emission angle e of the point at angle θ from the sub-object point: e = θ + γ,
+    /// tan γ = R sin θ / (d − R cos θ).
+    fn emission_of(&self, theta: f64) -> f64 {
+        theta + (EARTH_RADIUS_M * theta.sin()).atan2(self.d - EARTH_RADIUS_M * theta.cos())
+    }
+
+    /// Adds the beam from emission angle `e_ang` and azimuth `phi` with quadrature weight
+    /// `w` (in e and φ), if its point is sunlit and seen.
+    #[inline]
+    fn push(&self, e_ang: f64, phi: f64, w: f64, lit: &mut LitBeams) {
+        let k = self.k;
         let sin_g = k * e_ang.sin();
         let cos_g = (1.0 - sin_g * sin_g).max(0.0).sqrt();
         let theta = e_ang - sin_g.asin();
         let (sp, cp) = phi.sin_cos();
-        let across = a * cp + b * sp;
-        let n = o * theta.cos() + across * theta.sin();
-        let cos_z = n.dot(sun_dir);
+        let across = self.a * cp + self.b * sp;
+        let n = self.o * theta.cos() + across * theta.sin();
+        let cos_z = n.dot(self.sun_dir);
         if cos_z <= 0.0 || cos_g <= 0.0 {
             return;
         }
-        let dir = e * cos_g + across * sin_g;
+        let dir = self.e * cos_g + across * sin_g;
         let d_omega = w * sin_g * k * e_ang.cos() / cos_g;
-        let irradiance = radiance_scale * cos_z * d_omega;
+        let irradiance = self.radiance_scale * cos_z * d_omega;
         if irradiance > 0.0 {
-            mean += dir * irradiance;
-            beams.push(Beam { dir, irradiance });
+            lit.mean += dir * irradiance;
+            lit.beams.push(Beam { dir, irradiance });
         }
-    };
-    let gauss = gauss_legendre(rings);
-    // whole rings out to θ_f (clipped at the limb)
-    let theta_f = (half_pi - psi).min(theta_v);
-    if theta_f > 0.0 {
-        let e_f = if theta_f >= theta_v {
-            half_pi
-        } else {
-            e_of_theta(theta_f)
-        };
-        let gamma_f = (k * e_f.sin()).asin();
-        patch = patch.max(gamma_f / rings as f64);
-        for (i, &(x, wx)) in gauss.iter().enumerate() {
-            let e_ang = e_f * x;
-            patch = patch.max((k * e_ang.sin()) * TAU / azimuths as f64);
-            for j in 0..azimuths {
-                let phi = TAU * (j as f64 + 0.5 * (i % 2) as f64) / azimuths as f64;
-                push(e_ang, phi, e_f * wx * TAU / azimuths as f64, &mut beams);
+    }
+
+    /// Whole rings out to θ_f = 90° − ψ (clipped at the limb): Gauss–Legendre in e on
+    /// [0, e_f], `azimuths` even azimuths, every other ring turned by half a step.
+    fn whole_rings(&self, gauss: &[(f64, f64)], azimuths: usize, lit: &mut LitBeams) {
+        let (k, theta_v) = (self.k, self.limb());
+        let rings = gauss.len();
+        let theta_f = (0.5 * PI - self.psi).min(theta_v);
+        if theta_f > 0.0 {
+            let e_f = if theta_f >= theta_v {
+                0.5 * PI
+            } else {
+                self.emission_of(theta_f)
+            };
+            let gamma_f = (k * e_f.sin()).asin();
+            lit.patch = lit.patch.max(gamma_f / rings as f64);
+            for (i, &(x, wx)) in gauss.iter().enumerate() {
+                let e_ang = e_f * x;
+                lit.patch = lit.patch.max((k * e_ang.sin()) * TAU / azimuths as f64);
+                for j in 0..azimuths {
+                    let phi = TAU * (j as f64 + 0.5 * (i % 2) as f64) / azimuths as f64;
+                    self.push(e_ang, phi, e_f * wx * TAU / azimuths as f64, lit);
+                }
             }
         }
     }
-    // arcs from θ_a = max(θ_f, θ_min) to the limb
-    let theta_a = (psi - half_pi).abs();
-    if theta_a < theta_v && psi.sin() > 0.0 {
-        let e_a = e_of_theta(theta_a);
+
+    /// The crescent: arcs about the Sun's azimuth from θ_a = |ψ − 90°| (where the whole
+    /// rings end, or the night side's edge) to the limb, when any of it is seen.
+    fn crescent_arcs(&self, gauss: &[(f64, f64)], azimuths: usize, lit: &mut LitBeams) {
+        let theta_a = (self.psi - 0.5 * PI).abs();
+        if theta_a < self.limb() && self.psi.sin() > 0.0 {
+            self.arcs_from(self.emission_of(theta_a), gauss, azimuths, lit);
+        }
+    }
+
+    /// Arcs |φ| ≤ φ_max(θ) from emission angle `e_a` to the limb: Gauss–Legendre in t
+    /// with e = e_a + (90° − e_a) t² (which takes up the square-root start of a crescent),
+    /// and in φ on each arc, with more azimuths (up to [`ARC_AZIMUTHS_MAX`] times) on a
+    /// thin crescent, so the beams are spaced alike along and across it.
+    fn arcs_from(&self, e_a: f64, gauss: &[(f64, f64)], azimuths: usize, lit: &mut LitBeams) {
+        let (k, psi) = (self.k, self.psi);
+        let rings = gauss.len();
+        let half_pi = 0.5 * PI;
         let span = half_pi - e_a;
         let depth = k.asin() - (k * e_a.sin()).asin();
-        let cot_psi = cos_psi / psi.sin();
+        let cot_psi = self.cos_psi / psi.sin();
         let arcs: Vec<(f64, f64, f64)> = gauss
             .iter()
             .map(|&(t, wt)| {
@@ -209,8 +313,6 @@ pub fn sphere_with(
                 (e_ang, 2.0 * span * t * wt, phi_max)
             })
             .collect();
-        // a thin crescent's arcs are long next to their depth: more azimuths (up to
-        // ARC_AZIMUTHS_MAX times), so the beams are spaced alike along and across it
         let length = arcs
             .iter()
             .map(|&(e_ang, _, phi_max)| 2.0 * phi_max * k * e_ang.sin())
@@ -218,24 +320,16 @@ pub fn sphere_with(
         let per_arc = ((rings as f64 * length / depth.max(1e-300)).ceil() as usize)
             .clamp(azimuths, ARC_AZIMUTHS_MAX * azimuths);
         let gauss_phi = gauss_legendre(per_arc);
-        patch = patch.max(depth / rings as f64);
+        lit.patch = lit.patch.max(depth / rings as f64);
         for &(e_ang, de, phi_max) in &arcs {
-            patch = patch.max(k * e_ang.sin() * 2.0 * phi_max / per_arc as f64);
+            lit.patch = lit
+                .patch
+                .max(k * e_ang.sin() * 2.0 * phi_max / per_arc as f64);
             for &(x, wx) in gauss_phi.iter() {
                 let phi = phi_max * (2.0 * x - 1.0);
-                push(e_ang, phi, de * 2.0 * phi_max * wx, &mut beams);
+                self.push(e_ang, phi, de * 2.0 * phi_max * wx, lit);
             }
         }
-    }
-    if beams.is_empty() {
-        patch = 0.0;
-    }
-    let shadow_dir = (mean.length_squared() > 0.0).then(|| mean.normalize());
-    Earthshine {
-        beams,
-        shadow_dir,
-        sunlit: Some(lit),
-        patch,
     }
 }
 

@@ -138,6 +138,11 @@ pub struct LightcurvePlot {
     pub fitted: Vec<(f64, Option<f64>)>,
 }
 
+/// The observations' colour (points and error bars).
+const OBSERVED: RGBColor = RGBColor(40, 40, 40);
+
+/// Draws the light-curve plot onto `root`: the magnitudes with the fitted curve above,
+/// the residuals below; `k` scales every length.
 fn draw_lightcurve<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
@@ -152,13 +157,61 @@ where
     if data.observed.is_empty() {
         return Err("no observations to plot".into());
     }
-    let font = |px: u32| ("sans-serif", (px * k) as f64);
+    let times = time_range(data);
+    let residuals = residuals(data);
+    let (upper, lower) = root.split_vertically((SIZE.1 * k) * 68 / 100);
+    draw_magnitudes(&upper, title, data, times, k)?;
+    draw_residuals(&lower, &residuals, times, k)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// The observations' times, s, widened by a second each way when there is one instant.
+fn time_range(data: &LightcurvePlot) -> (f64, f64) {
     let (t0, t1) = min_max(data.observed.iter().map(|o| o.0));
-    let (t0, t1) = if t1 > t0 {
+    if t1 > t0 {
         (t0, t1)
     } else {
         (t0 - 1.0, t1 + 1.0)
-    };
+    }
+}
+
+/// (t s, observed − fitted mag, 1σ mag) where the model has light.
+fn residuals(data: &LightcurvePlot) -> Vec<(f64, f64, f64)> {
+    data.observed
+        .iter()
+        .zip(&data.fitted)
+        .filter_map(|(o, f)| f.1.map(|m| (o.0, o.1 - m, o.2)))
+        .collect()
+}
+
+/// The fitted curve as runs of consecutive points with light (a gap where it has none).
+fn fitted_segments(fitted: &[(f64, Option<f64>)]) -> Vec<Vec<(f64, f64)>> {
+    let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+    for &(t, m) in fitted {
+        match m {
+            Some(m) => segments.last_mut().expect("one segment").push((t, m)),
+            None => segments.push(Vec::new()),
+        }
+    }
+    segments.retain(|s| !s.is_empty());
+    segments
+}
+
+/// The upper panel: the observations with their error bars and the fitted curve,
+/// magnitudes bright up, with the caption and the legend.
+fn draw_magnitudes<DB: DrawingBackend>(
+    upper: &DrawingArea<DB, Shift>,
+    title: &str,
+    data: &LightcurvePlot,
+    (t0, t1): (f64, f64),
+    k: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let font = |px: u32| ("sans-serif", (px * k) as f64);
     let mags = data
         .observed
         .iter()
@@ -166,19 +219,7 @@ where
         .chain(data.fitted.iter().filter_map(|f| f.1));
     let (m0, m1) = min_max(mags);
     let pad = ((m1 - m0) * 0.05).max(0.05);
-    let residuals: Vec<(f64, f64, f64)> = data
-        .observed
-        .iter()
-        .zip(&data.fitted)
-        .filter_map(|(o, f)| f.1.map(|m| (o.0, o.1 - m, o.2)))
-        .collect();
-    let rmax = residuals
-        .iter()
-        .map(|r| r.1.abs() + r.2)
-        .fold(0.05f64, f64::max)
-        * 1.1;
-    let (upper, lower) = root.split_vertically((SIZE.1 * k) * 68 / 100);
-    let mut top = ChartBuilder::on(&upper)
+    let mut top = ChartBuilder::on(upper)
         .caption(title, font(18))
         .margin(12 * k)
         .x_label_area_size(20 * k)
@@ -192,7 +233,7 @@ where
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(e)?;
-    let obs = RGBColor(40, 40, 40);
+    let obs = OBSERVED;
     let fit = PALETTE[1];
     top.draw_series(data.observed.iter().map(|&(t, m, s)| {
         PathElement::new(vec![(t, m - s), (t, m + s)], obs.mix(0.5).stroke_width(k))
@@ -206,16 +247,8 @@ where
     .map_err(e)?
     .label("observed (±1σ)")
     .legend(move |(x, y)| Circle::new((x + 10 * k as i32, y), 3 * k, obs.filled()));
-    // the fitted curve, broken where it has no light
-    let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-    for &(t, m) in &data.fitted {
-        match m {
-            Some(m) => segments.last_mut().expect("one segment").push((t, m)),
-            None => segments.push(Vec::new()),
-        }
-    }
     let mut labelled = false;
-    for s in segments.into_iter().filter(|s| !s.is_empty()) {
+    for s in fitted_segments(&data.fitted) {
         let series = top
             .draw_series(LineSeries::new(s, fit.stroke_width(2 * k)))
             .map_err(e)?;
@@ -236,7 +269,28 @@ where
         .label_font(font(13))
         .draw()
         .map_err(e)?;
-    let mut bottom = ChartBuilder::on(&lower)
+    Ok(())
+}
+
+/// The lower panel: the residuals with their error bars about a zero line, symmetric
+/// about it and at least ±0.05 mag.
+fn draw_residuals<DB: DrawingBackend>(
+    lower: &DrawingArea<DB, Shift>,
+    residuals: &[(f64, f64, f64)],
+    (t0, t1): (f64, f64),
+    k: u32,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let font = |px: u32| ("sans-serif", (px * k) as f64);
+    let rmax = residuals
+        .iter()
+        .map(|r| r.1.abs() + r.2)
+        .fold(0.05f64, f64::max)
+        * 1.1;
+    let mut bottom = ChartBuilder::on(lower)
         .margin(12 * k)
         .x_label_area_size(40 * k)
         .y_label_area_size(70 * k)
@@ -251,6 +305,8 @@ where
         .light_line_style(RGBColor(235, 235, 235))
         .draw()
         .map_err(e)?;
+    let obs = OBSERVED;
+    let fit = PALETTE[1];
     bottom
         .draw_series(LineSeries::new(
             vec![(t0, 0.0), (t1, 0.0)],
@@ -269,7 +325,6 @@ where
                 .map(|&(t, r, _)| Circle::new((t, r), 2 * k, obs.filled())),
         )
         .map_err(e)?;
-    root.present().map_err(e)?;
     Ok(())
 }
 

@@ -1,5 +1,6 @@
 //! The service's limits and the computation slots that enforce the concurrency limit.
 
+use super::errors::ApiError;
 use crate::scene::Limits;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
@@ -91,6 +92,41 @@ impl ServiceLimits {
             max_triangle_epochs: self.max_sync_triangle_epochs.saturating_mul(1000),
             max_pixel_samples: self.max_sync_pixel_samples.saturating_mul(100),
         }
+    }
+
+    /// Whether one more job may be taken, for the embedded store and the shared queue
+    /// alike: 507 while the stored results (`stored`, bytes) are at their limit, else 429
+    /// while the `unfinished()` jobs (queued or running; counted only when needed) fill
+    /// the queue.
+    pub fn room_for_a_job(
+        &self,
+        stored: u64,
+        unfinished: impl FnOnce() -> usize,
+    ) -> Result<(), ApiError> {
+        if stored >= self.max_result_bytes {
+            return Err(ApiError::new(
+                axum::http::StatusCode::INSUFFICIENT_STORAGE,
+                format!(
+                    "stored results take {stored} bytes (limit {}): fetch and DELETE \
+                     finished jobs to make room",
+                    self.max_result_bytes
+                ),
+            ));
+        }
+        let unfinished = unfinished();
+        if unfinished >= self.max_queued_jobs {
+            let mut e = ApiError::new(
+                axum::http::StatusCode::TOO_MANY_REQUESTS,
+                format!(
+                    "{unfinished} jobs are queued or running (limit {}); retry when some \
+                     have finished, or cancel some",
+                    self.max_queued_jobs
+                ),
+            );
+            e.retry_after_s = Some(10);
+            return Err(e);
+        }
+        Ok(())
     }
 }
 

@@ -6,6 +6,7 @@ use super::observed::{observed_epochs, Observation};
 use super::report::{Fitted, LightcurveFit};
 use super::residuals::Problem;
 use super::{Options, Run, SOLVED_STARTS};
+use crate::fit::params::Bound;
 use crate::fit::solve::{self, Residuals, Scale, Settings, Solution};
 use crate::integrate::{Cancelled, Progress};
 use crate::scene::{Limits, Request, Scene, ValidationError};
@@ -193,81 +194,15 @@ pub fn fit_with(prepared: &Prepared, run: &Run) -> Result<LightcurveFit, FitErro
         request,
         observed,
         opts,
-        scene,
         resolved,
+        ..
     } = prepared;
-    let Resolved {
-        targets,
-        bounds,
-        start,
-        materials,
-    } = resolved;
-    let base = scene
-        .epochs
-        .iter()
-        .map(|e| (e.sun, e.observer, e.earth))
-        .collect();
-    let dark = observed
-        .iter()
-        .map(|o| o.magnitude)
-        .fold(f64::NEG_INFINITY, f64::max)
-        + 5.0;
-    let p = targets.len();
-    let problem = Problem {
-        scene: RefCell::new(scene.clone()),
-        base,
-        materials: materials.clone(),
-        targets: targets.clone(),
-        observed: observed.clone(),
-        dark,
-        run,
-        // the uncertainties (2p) and the curve at the optimum are kept back
-        budget: Cell::new(opts.max_evaluations - (2 * p + 1)),
-        spent: Cell::new(false),
-        cancelled: Cell::new(false),
-        last: RefCell::new(Vec::new()),
-        best: RefCell::new(None),
-        error: RefCell::new(None),
-    };
-    let settings = Settings {
-        loss: opts.loss,
-        scale: Scale::Known,
-        tolerance: 1e-8,
-        patience: 50,
-        fd_step: 1e-5,
-        max_rounds: 8,
-    };
-    let starts = starts(&problem, start, opts);
-    let mut solutions = Vec::new();
-    for s in &starts {
-        if problem.stopped() {
-            break;
-        }
-        let sol = solve::solve(&problem, bounds, s, &settings);
-        solutions.push(if problem.spent.get() {
-            budget_spent(&problem, opts.max_evaluations)
-        } else {
-            sol
-        });
-    }
+    let Resolved { bounds, start, .. } = resolved;
+    let problem = problem(prepared, run);
+    let solutions = solve_starts(&problem, bounds, &starts(&problem, start, opts), opts);
     stop_if_cancelled_or_invalid(&problem)?;
     let start_rms: Vec<f64> = solutions.iter().map(|s| rms(&s.residuals)).collect();
-    let sol = solutions
-        .into_iter()
-        .min_by(|a, b| {
-            let (oa, ob) = (
-                solve::objective(opts.loss, &a.residuals, 1.0),
-                solve::objective(opts.loss, &b.residuals, 1.0),
-            );
-            oa.total_cmp(&ob)
-        })
-        .or_else(|| {
-            let spent = problem.best.borrow().is_some();
-            spent.then(|| budget_spent(&problem, opts.max_evaluations))
-        })
-        .ok_or_else(|| {
-            ValidationError::new("max_evaluations", "no light curve could be evaluated")
-        })?;
+    let sol = best_solution(&problem, solutions, opts)?;
     // what was kept back: the uncertainties and the curve at the optimum
     problem.budget.set(opts.max_evaluations);
     let cov = solve::covariance(&problem, bounds, &sol);
@@ -291,6 +226,105 @@ pub fn fit_with(prepared: &Prepared, run: &Run) -> Result<LightcurveFit, FitErro
         start_rms,
         started,
     }))
+}
+
+/// The problem a fit solves: the scene's epochs before any yaw, the observations, the
+/// magnitude taken where the model has no light (5 fainter than the faintest observed),
+/// and the evaluation budget less what is kept back for the uncertainties (2p) and the
+/// curve at the optimum.
+fn problem<'a>(prepared: &Prepared, run: &'a Run<'a>) -> Problem<'a> {
+    let Prepared {
+        observed,
+        opts,
+        scene,
+        resolved,
+        ..
+    } = prepared;
+    let Resolved {
+        targets, materials, ..
+    } = resolved;
+    let base = scene
+        .epochs
+        .iter()
+        .map(|e| (e.sun, e.observer, e.earth))
+        .collect();
+    let dark = observed
+        .iter()
+        .map(|o| o.magnitude)
+        .fold(f64::NEG_INFINITY, f64::max)
+        + 5.0;
+    let p = targets.len();
+    Problem {
+        scene: RefCell::new(scene.clone()),
+        base,
+        materials: materials.clone(),
+        targets: targets.clone(),
+        observed: observed.clone(),
+        dark,
+        run,
+        budget: Cell::new(opts.max_evaluations - (2 * p + 1)),
+        spent: Cell::new(false),
+        cancelled: Cell::new(false),
+        last: RefCell::new(Vec::new()),
+        best: RefCell::new(None),
+        error: RefCell::new(None),
+    }
+}
+
+/// Each start solved in turn until the fit is stopped; a solve that ran out of budget
+/// gives the best point evaluated so far.
+fn solve_starts(
+    problem: &Problem,
+    bounds: &[Bound],
+    starts: &[Vec<f64>],
+    opts: &Options,
+) -> Vec<Solution> {
+    let settings = Settings {
+        loss: opts.loss,
+        scale: Scale::Known,
+        tolerance: 1e-8,
+        patience: 50,
+        fd_step: 1e-5,
+        max_rounds: 8,
+    };
+    let mut solutions = Vec::new();
+    for s in starts {
+        if problem.stopped() {
+            break;
+        }
+        let sol = solve::solve(problem, bounds, s, &settings);
+        solutions.push(if problem.spent.get() {
+            budget_spent(problem, opts.max_evaluations)
+        } else {
+            sol
+        });
+    }
+    solutions
+}
+
+/// The solution of least objective; with none, the best point evaluated before the
+/// budget ran out; with no point evaluated, an error naming `max_evaluations`.
+fn best_solution(
+    problem: &Problem,
+    solutions: Vec<Solution>,
+    opts: &Options,
+) -> Result<Solution, FitError> {
+    solutions
+        .into_iter()
+        .min_by(|a, b| {
+            let (oa, ob) = (
+                solve::objective(opts.loss, &a.residuals, 1.0),
+                solve::objective(opts.loss, &b.residuals, 1.0),
+            );
+            oa.total_cmp(&ob)
+        })
+        .or_else(|| {
+            let spent = problem.best.borrow().is_some();
+            spent.then(|| budget_spent(problem, opts.max_evaluations))
+        })
+        .ok_or_else(|| {
+            ValidationError::new("max_evaluations", "no light curve could be evaluated").into()
+        })
 }
 
 /// The starts to solve: with the yaw free, `opts.yaw_starts` yaws evenly round the

@@ -5,7 +5,7 @@
 //! |---|---|
 //! | twice a polygon's signed area | here |
 //! | convex hulls, one monotone chain: a point set's ([`convex_hull`]), and a hull's corners and near-boundary points by index ([`HullIndices`]) | `hull.rs` |
-//! | the lit part of a face as disjoint convex pieces, shadows subtracted, and its area ([`Region`]) | `region.rs` |
+//! | the lit part of a face as disjoint convex pieces, shadows subtracted, and its area ([`Region`]) | `region/` |
 //! | cutting convex polygons: inward edges, a split along a line, where a piece lies against a polygon | `clip.rs` |
 
 mod clip;

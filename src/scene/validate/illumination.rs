@@ -4,7 +4,7 @@ use super::values::{err, finite, in_range};
 use super::ValidationError;
 use crate::radiometry::bands::{self, SolarSpectrum};
 use crate::radiometry::{planck, sun, AU_M, SUN_RADIUS_M};
-use crate::scene::request::Request;
+use crate::scene::request::{IlluminationSpec, Request};
 use crate::scene::{EarthshineModel, Illumination, SolarSpectrumChoice};
 
 /// The least band irradiance of the Sun at 1 AU a request may ask for, W/m²: a scene's
@@ -12,12 +12,24 @@ use crate::scene::{EarthshineModel, Illumination, SolarSpectrumChoice};
 /// underflows, where a magnitude would turn `null` although light arrives.
 pub const MIN_SUN_BAND_1AU_W_M2: f64 = 1e-200;
 
-/// The request's illumination, the defaults filled in.
+/// The request's illumination, the defaults filled in; checked in the order of its
+/// fields' use: the band, the Sun, the sunlight in the band, the earthshine.
 pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationError> {
     let mut out = Illumination::default();
     let Some(spec) = &req.illumination else {
         return Ok(out);
     };
+    band(spec, &mut out)?;
+    sun(spec, &mut out)?;
+    out.sun_1au_w_m2 = sun_1au(&out)?;
+    enough_sunlight(&out)?;
+    earthshine(spec, &mut out)?;
+    Ok(out)
+}
+
+/// The band: an interval `band_um` or a named passband (its range and the Sun's
+/// magnitude in it), not both.
+fn band(spec: &IlluminationSpec, out: &mut Illumination) -> Result<(), ValidationError> {
     if let Some([a, b]) = spec.band_um {
         finite("illumination.band_um[0]", a)?;
         finite("illumination.band_um[1]", b)?;
@@ -49,6 +61,11 @@ pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationErro
         out.band_um = p.range_um();
         out.sun_magnitude = p.sun_magnitude;
     }
+    Ok(())
+}
+
+/// The Sun: its temperature (for Planck) and which solar spectrum.
+fn sun(spec: &IlluminationSpec, out: &mut Illumination) -> Result<(), ValidationError> {
     if let Some(t) = spec.sun_temperature_k {
         out.sun_temperature_k = in_range("illumination.sun_temperature_k", t, 100.0, 100_000.0)?;
     }
@@ -64,9 +81,15 @@ pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationErro
             }
         };
     }
+    Ok(())
+}
+
+/// The Sun's irradiance in the band at 1 AU, W/m²; an interval outside the CALSPEC
+/// spectrum's range is refused.
+fn sun_1au(out: &Illumination) -> Result<f64, ValidationError> {
     let [a, b] = out.band_um;
     let t = out.sun_temperature_k;
-    out.sun_1au_w_m2 = match (out.passband, out.solar_spectrum) {
+    Ok(match (out.passband, out.solar_spectrum) {
         (None, SolarSpectrumChoice::Planck) => sun::band_irradiance_1au(out.band_um, t),
         (Some(p), SolarSpectrumChoice::Planck) => SolarSpectrum::Planck(t).band_1au(p),
         (Some(p), SolarSpectrumChoice::Calspec) => SolarSpectrum::Calspec.band_1au(p),
@@ -82,9 +105,14 @@ pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationErro
             };
             e
         }
-    };
-    // A band far in the Wien tail of a cold Sun (0.01–0.05 µm at 300 K: ~1e-410 W/m²)
-    // holds light that no f64 can carry through a scene: say so rather than answer 0.
+    })
+}
+
+/// A band far in the Wien tail of a cold Sun (0.01–0.05 µm at 300 K: ~1e-410 W/m²)
+/// holds light that no f64 can carry through a scene: say so rather than answer 0.
+fn enough_sunlight(out: &Illumination) -> Result<(), ValidationError> {
+    let [a, b] = out.band_um;
+    let t = out.sun_temperature_k;
     let ln_es = if out.passband.is_none() && out.solar_spectrum == SolarSpectrumChoice::Planck {
         planck::ln_band_exitance(a, b, t) + 2.0 * (SUN_RADIUS_M / AU_M).ln()
     } else {
@@ -106,6 +134,11 @@ pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationErro
             ),
         );
     }
+    Ok(())
+}
+
+/// The earthshine model and the Earth's albedo.
+fn earthshine(spec: &IlluminationSpec, out: &mut Illumination) -> Result<(), ValidationError> {
     if let Some(e) = &spec.earthshine {
         out.earthshine = match e.as_str() {
             "off" => EarthshineModel::Off,
@@ -122,7 +155,7 @@ pub(super) fn illumination(req: &Request) -> Result<Illumination, ValidationErro
     if let Some(a) = spec.earth_albedo {
         out.earth_albedo = in_range("illumination.earth_albedo", a, 0.0, 1.0)?;
     }
-    Ok(out)
+    Ok(())
 }
 
 #[cfg(test)]

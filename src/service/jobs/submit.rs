@@ -168,30 +168,8 @@ impl Jobs {
     /// [`Self::room_for_a_job`] within the locked table `t`; also 507 while the stored
     /// results are over their limit.
     fn room_in(&self, t: &HashMap<String, Entry>) -> Result<(), ApiError> {
-        let stored = self.store.result_bytes();
-        if stored >= self.limits.max_result_bytes {
-            return Err(ApiError::new(
-                axum::http::StatusCode::INSUFFICIENT_STORAGE,
-                format!(
-                    "stored results take {stored} bytes (limit {}): fetch and DELETE \
-                     finished jobs to make room",
-                    self.limits.max_result_bytes
-                ),
-            ));
-        }
-        let unfinished = t.values().filter(|e| !e.rec.state.is_final()).count();
-        if unfinished >= self.limits.max_queued_jobs {
-            let mut e = ApiError::new(
-                axum::http::StatusCode::TOO_MANY_REQUESTS,
-                format!(
-                    "{unfinished} jobs are queued or running (limit {}); retry when some \
-                     have finished, or cancel some",
-                    self.limits.max_queued_jobs
-                ),
-            );
-            e.retry_after_s = Some(10);
-            return Err(e);
-        }
-        Ok(())
+        self.limits.room_for_a_job(self.store.result_bytes(), || {
+            t.values().filter(|e| !e.rec.state.is_final()).count()
+        })
     }
 }

@@ -124,6 +124,7 @@ impl Cutter {
     /// itself crosses it, so k segments make about k cells, not k². Calls `cell` with
     /// each; false when there would be more than `max` cells (the cells so far have been
     /// given).
+    #[inline]
     pub fn cut(
         &mut self,
         poly: &[DVec2],

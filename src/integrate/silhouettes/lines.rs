@@ -42,6 +42,7 @@ pub struct LineGrid {
 
 impl LineGrid {
     /// Bins `folds` (each within `tol`, m, of its cells).
+    #[inline]
     pub fn build(&mut self, folds: &[Fold], tol: f64) {
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
         for f in folds {
@@ -100,6 +101,7 @@ impl LineGrid {
 
     /// Calls `found(i)` for every fold binned in a cell that box `lo`–`hi` (m, across d)
     /// touches; a fold may come more than once.
+    #[inline]
     pub fn query(&self, lo: DVec2, hi: DVec2, mut found: impl FnMut(u32)) {
         let (x0, y0) = self.cell_of(lo);
         let (x1, y1) = self.cell_of(hi);
@@ -191,6 +193,7 @@ impl Default for Across {
 /// face's corners across d when it is one polygon; the test is then made there, where
 /// distances are never longer than in the face's plane (so a line within `tol` of the
 /// face there is kept, never one within it in the plane lost).
+#[inline]
 pub fn crossing(
     polys: &Polygons,
     f: usize,

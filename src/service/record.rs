@@ -94,3 +94,14 @@ pub struct JobRecord {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub evaluations: Option<Evaluations>,
 }
+
+/// A submission's idempotency key with the SHA-256 of its body (lowercase hex): a retry
+/// with the key and the same body replays the job, with another body it is refused.
+pub fn idempotency(key: Option<String>, body: &[u8]) -> Option<(String, String)> {
+    key.map(|k| {
+        use sha2::Digest;
+        let digest = sha2::Sha256::digest(body);
+        let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
+        (k, hex)
+    })
+}

@@ -99,7 +99,7 @@ fn sun_1au(out: &Illumination) -> Result<f64, ValidationError> {
                 return err(
                     "illumination.band_um",
                     format!(
-                        "[{a}, {b}] µm leaves the CALSPEC solar spectrum ({lo}–{hi} µm);                          choose a band within it or `solar_spectrum: planck`"
+                        "[{a}, {b}] µm leaves the CALSPEC solar spectrum ({lo}–{hi} µm); choose a band within it or `solar_spectrum: planck`"
                     ),
                 );
             };

@@ -43,12 +43,7 @@ impl Jobs {
                 "shutting down",
             ));
         }
-        let idempotency = key.map(|k| {
-            use sha2::Digest;
-            let digest = sha2::Sha256::digest(&body);
-            let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
-            (k, hex)
-        });
+        let idempotency = crate::service::record::idempotency(key, &body);
         if let Some(found) = self.replay(idempotency.as_ref())? {
             return Ok((found, true));
         }

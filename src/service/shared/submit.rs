@@ -71,12 +71,7 @@ impl Shared {
                 "shutting down",
             ));
         }
-        let idempotency = key.map(|k| {
-            use sha2::Digest;
-            let digest = sha2::Sha256::digest(&body);
-            let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
-            (k, hex)
-        });
+        let idempotency = crate::service::record::idempotency(key, &body);
         // a retry costs no validation
         if let Some(found) = self.replay(None, idempotency.as_ref()).await? {
             return Ok((found, true));

@@ -5,8 +5,7 @@
 //! its lid), are left out.
 
 use super::caps::LidState;
-use super::face::side_index;
-use super::face::PartShadow;
+use super::face::{FaceSide, PartShadow};
 use super::grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
 use super::proofs::{outline_clear, reaches, reaches_front, LARGE_BLOCKER};
 use super::{Cache, Visibility, NO_PART};
@@ -22,15 +21,15 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
+        side: FaceSide,
         directions: &[Option<DVec3>; 3],
         whole: bool,
         out: &mut [Vec<Blocker>; 3],
     ) -> [LidState; 3] {
         let f = &self.faces[face];
-        let n = f.normal * side;
-        let side_index = side_index(side);
-        let key = (f.patch, side > 0.0);
+        let n = f.normal * side.sign();
+        let side_index = side.index();
+        let key = (f.patch, side);
         if cache.search.key != Some(key) {
             cache.search.reset();
             cache.search.key = Some(key);
@@ -285,8 +284,8 @@ enum Along<'a> {
 /// patch and side last searched, and the faces seen along each direction.
 #[derive(Default)]
 pub(super) struct SearchScratch {
-    /// The receiver patch, and whether its front side, that the results below are for.
-    key: Option<(u32, bool)>,
+    /// The receiver patch, and its side, that the results below are for.
+    key: Option<(u32, FaceSide)>,
     /// Flagged occluder patches for view, sun, earth (None: not computed yet).
     flagged: [Option<Vec<u32>>; 3],
     /// Per direction: of the flagged patches, those with faces to test when the parts in

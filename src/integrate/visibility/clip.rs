@@ -264,7 +264,7 @@ impl Visibility {
 #[cfg(test)]
 mod tests {
     use super::super::oracle::*;
-    use super::super::{Cache, Uncertain};
+    use super::super::{Cache, FaceSide, Uncertain};
     use super::*;
     use crate::geometry::builtin;
 
@@ -305,9 +305,9 @@ mod tests {
             let (view, sun, earth) = (unit(), unit(), unit());
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
-                    if (side < 0.0 && !g.two_sided) || n.dot(view) <= 0.0 {
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
+                    if (side == FaceSide::Back && !g.two_sided) || n.dot(view) <= 0.0 {
                         continue;
                     }
                     let dirs = Uncertain {

@@ -6,7 +6,7 @@
 use super::blockers::Blocker;
 use super::caps::{CapStates, LidState};
 use super::clip::{above_horizon, ShadowBuffers};
-use super::face::{side_index, FaceGeom};
+use super::face::{FaceGeom, FaceSide};
 use super::settle::Settled;
 use super::{face_directions, Cache, Uncertain, Visibility, VisibilityMode, NO_PART};
 use super::{EARTH, SUN, VIEW};
@@ -50,8 +50,8 @@ impl Visibility {
 
     /// Is `f` (on side `side`) a cap's inner face that nothing but its own cap can shadow?
     #[inline]
-    pub(super) fn lid_decides(&self, f: &FaceGeom, side: f64) -> bool {
-        self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[side_index(side)]
+    pub(super) fn lid_decides(&self, f: &FaceGeom, side: FaceSide) -> bool {
+        self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[side.index()]
     }
 
     /// [`Visibility::visible_area`] for a face (side normal `n`) that its own cap's lid
@@ -182,7 +182,7 @@ impl LidTable<'_> {
     pub fn decided(
         &self,
         face: usize,
-        side: f64,
+        side: FaceSide,
         sunlit: bool,
         earthlit: bool,
     ) -> Option<(f64, f64)> {
@@ -197,7 +197,7 @@ impl LidTable<'_> {
             earth: self.dirs.earth.filter(|_| earthlit),
             ..self.dirs
         };
-        let directions = face_directions(&dirs, f.normal * side);
+        let directions = face_directions(&dirs, f.normal * side.sign());
         let lids = lid_states(&directions, |k, _| self.states[k][cap].states[slot]);
         lid_decided(&lids, f.pieces_area)
     }
@@ -293,9 +293,9 @@ mod tests {
             let (view, sun, earth) = (lift(unit()), lift(unit()), lift(unit()));
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
-                    if !g.lid_only[side_index(side)] || n.dot(view) <= 0.0 {
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
+                    if !g.lid_only[side.index()] || n.dot(view) <= 0.0 {
                         continue;
                     }
                     let dirs = Uncertain {
@@ -375,8 +375,8 @@ mod tests {
                 .expect("the dish is a cap");
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
                     if n.dot(view) <= 0.0 {
                         continue;
                     }
@@ -396,7 +396,7 @@ mod tests {
                     assert_eq!(
                         (a_sun.to_bits(), a_earth.to_bits()),
                         (b_sun.to_bits(), b_earth.to_bits()),
-                        "face {i} side {side}: {a_sun} {a_earth} against {b_sun} {b_earth}"
+                        "face {i} side {side:?}: {a_sun} {a_earth} against {b_sun} {b_earth}"
                     );
                     decided += 1;
                     closed_earth += usize::from(a_earth == 0.0 && a_sun > 0.0);

@@ -75,6 +75,7 @@ use crate::scene::Scene;
 use blockers::{Blocker, SearchScratch};
 use caps::{CapStates, CapTree, LidState};
 use clip::ClipScratch;
+pub use face::FaceSide;
 use face::{face_geoms, triangle_area, FaceGeom};
 use glam::DVec3;
 pub use lids::LidTable;
@@ -293,18 +294,18 @@ impl Visibility {
     }
 
     /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on
-    /// side `side` (+1 front, −1 back); plus the number of rays cast. `budget` (m²) is the
+    /// side `side`; plus the number of rays cast. `budget` (m²) is the
     /// area of this face whose misclassification the tolerance allows.
     pub fn visible_area(
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
+        side: FaceSide,
         dirs: &Uncertain,
         budget: f64,
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
-        let n = f.normal * side;
+        let n = f.normal * side.sign();
         let directions = face_directions(dirs, n);
         if self.lid_decides(f, side) {
             if let Some((a_sun, a_earth)) = self.through_own_lid(cache, face, n, &directions) {
@@ -354,12 +355,12 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
+        side: FaceSide,
         directions: &[Option<DVec3>; 3],
         s: &mut Sampler,
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
-        let n = f.normal * side;
+        let n = f.normal * side.sign();
         if self.mode == VisibilityMode::Centroid {
             return s.centroids(&f.pieces);
         }

@@ -5,7 +5,7 @@
 //! face's whole part first ([`Visibility::part_cover`]), then against the face.
 
 use super::clip::above_horizon;
-use super::face::side_index;
+use super::face::FaceSide;
 use super::parts::{self, Cover, PartCover, Silhouette};
 use super::proofs::reaches;
 use super::{Cache, Visibility, NO_PART, VIEW};
@@ -57,12 +57,12 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
+        side: FaceSide,
         directions: &[Option<DVec3>; 3],
     ) -> [[bool; 3]; 2] {
         let f = &self.faces[face];
-        let side_index = side_index(side);
-        let n = f.normal * side;
+        let side_index = side.index();
+        let n = f.normal * side.sign();
         let covers = &f.covers[side_index];
         let (mut hidden, mut clear) = ([false; 3], [false; 3]);
         if covers.is_empty() || f.vertices.is_empty() {
@@ -268,9 +268,9 @@ mod tests {
             };
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
-                    if (side < 0.0 && !g.two_sided) || n.dot(view) <= 0.0 {
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
+                    if (side == FaceSide::Back && !g.two_sided) || n.dot(view) <= 0.0 {
                         continue;
                     }
                     let dirs = [Some(view), (n.dot(sun) > 0.0).then_some(sun), None];

@@ -5,6 +5,7 @@
 //! its lid), are left out.
 
 use super::caps::LidState;
+use super::direction::PerDirection;
 use super::face::{FaceSide, PartShadow};
 use super::grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
 use super::proofs::{outline_clear, reaches, reaches_front, LARGE_BLOCKER};
@@ -22,10 +23,10 @@ impl Visibility {
         cache: &mut Cache,
         face: usize,
         side: FaceSide,
-        directions: &[Option<DVec3>; 3],
+        directions: &PerDirection<Option<DVec3>>,
         whole: bool,
-        out: &mut [Vec<Blocker>; 3],
-    ) -> [LidState; 3] {
+        out: &mut PerDirection<Vec<Blocker>>,
+    ) -> PerDirection<LidState> {
         let f = &self.faces[face];
         let n = f.normal * side.sign();
         let side_index = side.index();
@@ -63,8 +64,8 @@ impl Visibility {
                 part != NO_PART && skipped(part)
             }
         };
-        let mut lids = [LidState::Open; 3];
-        for (k, d) in directions.iter().enumerate() {
+        let mut lids = PerDirection::splat(LidState::Open);
+        for (k, d) in directions.pairs() {
             let Some(d) = *d else { continue };
             // and the parts this direction's cover test settled: missing the face, or
             // (when clipping) cast whole
@@ -287,16 +288,16 @@ pub(super) struct SearchScratch {
     /// The receiver patch, and its side, that the results below are for.
     key: Option<(u32, FaceSide)>,
     /// Flagged occluder patches for view, sun, earth (None: not computed yet).
-    flagged: [Option<Vec<u32>>; 3],
+    flagged: PerDirection<Option<Vec<u32>>>,
     /// Per direction: of the flagged patches, those with faces to test when the parts in
     /// a mask are left out, with their count — for the last mask asked (faces of a patch
     /// mostly share theirs).
-    kept: [Option<Kept>; 3],
+    kept: PerDirection<Option<Kept>>,
     /// Faces' bounding spheres seen along each direction (built on first use in an epoch).
-    projections: [Projection; 3],
+    projections: PerDirection<Projection>,
     /// Faces binned across each direction (built on first use in an epoch): all, and all
     /// but a cap's (for the cap's own faces, [`Visibility::collect_blockers`]).
-    grids: [[FaceGrid; 2]; 3],
+    grids: PerDirection<[FaceGrid; 2]>,
     /// Per face: the query that last returned it (deduplicates multi-cell faces).
     stamp: Stamp,
 }
@@ -306,8 +307,8 @@ impl SearchScratch {
     /// grids are keyed by their direction and kept.
     pub(super) fn reset(&mut self) {
         self.key = None;
-        self.flagged = [None, None, None];
-        self.kept = [None, None, None];
+        self.flagged = PerDirection::default();
+        self.kept = PerDirection::default();
     }
 }
 

@@ -5,8 +5,9 @@
 
 use super::blockers::Blocker;
 use super::caps::LidState;
+use super::direction::{PerDirection, Toward};
 use super::parts::Silhouette;
-use super::{Cache, Visibility, EARTH, SUN, VIEW};
+use super::{Cache, Visibility};
 use crate::geometry::polygon::{convex_hull, Region};
 use glam::{DVec2, DVec3};
 
@@ -90,9 +91,9 @@ impl Visibility {
         cache: &mut Cache,
         face: usize,
         n: DVec3,
-        dirs: &[Option<DVec3>; 3],
-        blockers: &[Vec<Blocker>; 3],
-        lids: &[LidState; 3],
+        dirs: &PerDirection<Option<DVec3>>,
+        blockers: &PerDirection<Vec<Blocker>>,
+        lids: &PerDirection<LidState>,
     ) -> Option<(f64, f64)> {
         let dirs = dirs.map(|d| d.map(|d| above_horizon(d, n)));
         let x = &mut cache.clip;
@@ -113,7 +114,7 @@ impl Visibility {
         // view first: both the sunlit and the earthlit parts must be seen
         let tol = self.tol;
         let shadows = |region: &mut Region,
-                       k: usize,
+                       k: Toward,
                        x: &mut ShadowBuffers,
                        silhouettes: &mut Vec<Silhouette>,
                        part_hits: &[u32],
@@ -216,42 +217,46 @@ impl Visibility {
             }
             Some(())
         };
-        let [sv, ss, se] = &mut cache.silhouettes;
-        let [av, as_, ae] = &cache.settled;
+        let PerDirection {
+            view: sv,
+            sun: ss,
+            earth: se,
+        } = &mut cache.silhouettes;
+        let settled = &cache.settled;
         shadows(
             &mut x.lit,
-            VIEW,
+            Toward::View,
             &mut x.shadows,
             sv,
-            &cache.part_hits[VIEW],
-            &av.ahead,
+            &cache.part_hits.view,
+            &settled.view.ahead,
         )?;
         let seen = x.lit.area();
         if x.lit.is_empty() {
             return Some((0.0, 0.0)); // hidden: nothing to light
         }
-        let a_earth = if dirs[EARTH].is_some() {
+        let a_earth = if dirs.earth.is_some() {
             x.earthlit.clone_from(&x.lit);
             shadows(
                 &mut x.earthlit,
-                EARTH,
+                Toward::Earth,
                 &mut x.shadows,
                 se,
-                &cache.part_hits[EARTH],
-                &ae.ahead,
+                &cache.part_hits.earth,
+                &settled.earth.ahead,
             )?;
             x.earthlit.area()
         } else {
             seen
         };
-        let a_sun = if dirs[SUN].is_some() {
+        let a_sun = if dirs.sun.is_some() {
             shadows(
                 &mut x.lit,
-                SUN,
+                Toward::Sun,
                 &mut x.shadows,
                 ss,
-                &cache.part_hits[SUN],
-                &as_.ahead,
+                &cache.part_hits.sun,
+                &settled.sun.ahead,
             )?;
             x.lit.area()
         } else {

@@ -50,13 +50,15 @@
 //!    hits (measured on the box-wing's dish, checked against f64 intersection).
 //!
 //! What the steps share is built once per request ([`Visibility::build`]): each face's
-//! geometry ([`face`]), the patches and which may block which, the convex parts with their
+//! geometry ([`face`], asked about on one [`FaceSide`] at a time), the patches and which may block which, the convex parts with their
 //! shadows, planes and normal cones, the caps' trees. The tests check each step against
-//! f64 rays and against plain face-by-face clipping (`oracle`, test builds only).
+//! f64 rays and against plain face-by-face clipping (`oracle`, test builds only). What a
+//! step holds or decides per direction (view, Sun, Earth) is a [`direction::PerDirection`].
 
 mod blockers;
 mod caps;
 mod clip;
+mod direction;
 mod face;
 mod grid;
 mod lids;
@@ -75,6 +77,7 @@ use crate::scene::Scene;
 use blockers::{Blocker, SearchScratch};
 use caps::{CapStates, CapTree, LidState};
 use clip::ClipScratch;
+use direction::{PerDirection, Toward};
 pub use face::FaceSide;
 use face::{face_geoms, triangle_area, FaceGeom};
 use glam::DVec3;
@@ -106,12 +109,6 @@ pub struct Uncertain {
     /// Representative earthshine direction, when earthshine reaches the face.
     pub earth: Option<DVec3>,
 }
-
-/// Where each direction sits in the per-direction arrays (`[_; 3]`, in the order of
-/// [`face_directions`]): towards the observer, the Sun, the Earth.
-const VIEW: usize = 0;
-const SUN: usize = 1;
-const EARTH: usize = 2;
 
 /// A face of no convex part (in [`Visibility::part_of`]).
 const NO_PART: u32 = u32::MAX;
@@ -164,20 +161,20 @@ pub struct Cache {
     /// The blocker search's ([`Visibility::collect_blockers`]).
     search: SearchScratch,
     /// Per direction: what the face's cover candidates settle ([`Visibility::settle_by_parts`]).
-    settled: [Settled; 3],
+    settled: PerDirection<Settled>,
     /// Buffers for [`Visibility::settle_by_parts`].
     settle: SettleScratch,
     /// Per direction: the parts that may shadow the current face whole (indices into
     /// its `part_shadows`), from [`Visibility::collect_blockers`].
-    part_hits: [Vec<u32>; 3],
+    part_hits: PerDirection<Vec<u32>>,
     /// Per direction, per part: its silhouette this epoch.
-    silhouettes: [Vec<Silhouette>; 3],
+    silhouettes: PerDirection<Vec<Silhouette>>,
     /// Buffers for [`Visibility::exact_area`].
     clip: ClipScratch,
     /// Per direction, per part: a cap's face states along it (built on first use).
-    cap_states: [Vec<CapStates>; 3],
+    cap_states: PerDirection<Vec<CapStates>>,
     /// Buffers for a face's possible blockers per direction (see [`Sampler`]).
-    blockers: [Vec<Blocker>; 3],
+    blockers: PerDirection<Vec<Blocker>>,
 }
 
 impl Cache {
@@ -323,14 +320,19 @@ impl Visibility {
         // else lies there: no blockers to search or clip (a dish's back behind the bus).
         // Along one that nothing can shadow it from, it is lit (or seen) whole.
         cache.settled.iter_mut().for_each(Settled::clear);
-        let [hidden, clear] = self.settle_by_parts(cache, face, side, &directions);
-        if hidden[VIEW] {
+        let (hidden, clear) = self.settle_by_parts(cache, face, side, &directions);
+        if hidden.view {
             return (0.0, 0.0, 0);
         }
-        let lit = |k: usize, a: f64| if hidden[k] { 0.0 } else { a };
-        let directions = [0, 1, 2].map(|k| directions[k].filter(|_| !hidden[k] && !clear[k]));
+        let lit = |k: Toward, a: f64| if hidden[k] { 0.0 } else { a };
+        let directions =
+            PerDirection::from_fn(|k| directions[k].filter(|_| !hidden[k] && !clear[k]));
         if directions.iter().all(Option::is_none) {
-            return (lit(SUN, f.pieces_area), lit(EARTH, f.pieces_area), 0);
+            return (
+                lit(Toward::Sun, f.pieces_area),
+                lit(Toward::Earth, f.pieces_area),
+                0,
+            );
         }
         // the blocker lists' buffers are the cache's, kept from face to face
         let mut blockers = std::mem::take(&mut cache.blockers);
@@ -346,7 +348,7 @@ impl Visibility {
         );
         let (a_sun, a_earth, rays) = self.shadowed_area(cache, face, side, &directions, &mut s);
         cache.blockers = std::mem::take(&mut s.blockers);
-        (lit(SUN, a_sun), lit(EARTH, a_earth), rays)
+        (lit(Toward::Sun, a_sun), lit(Toward::Earth, a_earth), rays)
     }
 
     /// [`Visibility::visible_area`] for a face that its own cap's lid does not decide
@@ -356,7 +358,7 @@ impl Visibility {
         cache: &mut Cache,
         face: usize,
         side: FaceSide,
-        directions: &[Option<DVec3>; 3],
+        directions: &PerDirection<Option<DVec3>>,
         s: &mut Sampler,
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
@@ -365,7 +367,7 @@ impl Visibility {
             return s.centroids(&f.pieces);
         }
         let lids = self.collect_blockers(cache, face, side, directions, true, &mut s.blockers);
-        if lids[VIEW] == LidState::Closed {
+        if lids.view == LidState::Closed {
             return (0.0, 0.0, 0); // the face's own cap hides it
         }
         let open = open_directions(directions, &lids);
@@ -398,7 +400,11 @@ impl Visibility {
 /// Earthshine's representative direction may lie below the face while parts of the Earth
 /// light it: no meaningful ray then; it counts as unshadowed.
 #[inline]
-fn face_directions(dirs: &Uncertain, n: DVec3) -> [Option<DVec3>; 3] {
+fn face_directions(dirs: &Uncertain, n: DVec3) -> PerDirection<Option<DVec3>> {
     let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-    [Some(dirs.view), dirs.sun, earth]
+    PerDirection {
+        view: Some(dirs.view),
+        sun: dirs.sun,
+        earth,
+    }
 }

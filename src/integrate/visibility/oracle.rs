@@ -18,11 +18,15 @@ impl Visibility {
     ) -> Option<(f64, f64)> {
         let n = self.faces[face].normal * side.sign();
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-        let directions = [Some(dirs.view), dirs.sun, earth];
-        let mut blockers: [Vec<Blocker>; 3] = Default::default();
+        let directions = PerDirection {
+            view: Some(dirs.view),
+            sun: dirs.sun,
+            earth,
+        };
+        let mut blockers: PerDirection<Vec<Blocker>> = Default::default();
         cache.settled.iter_mut().for_each(Settled::clear);
         self.collect_blockers(cache, face, side, &directions, false, &mut blockers);
-        let open = [LidState::Open; 3];
+        let open = PerDirection::splat(LidState::Open);
         self.exact_area(cache, face, n, &directions, &blockers, &open)
     }
 }

@@ -5,10 +5,11 @@
 //! face's whole part first ([`Visibility::part_cover`]), then against the face.
 
 use super::clip::above_horizon;
+use super::direction::{PerDirection, Toward};
 use super::face::FaceSide;
 use super::parts::{self, Cover, PartCover, Silhouette};
 use super::proofs::reaches;
-use super::{Cache, Visibility, NO_PART, VIEW};
+use super::{Cache, Visibility, NO_PART};
 use glam::{DVec2, DVec3};
 
 /// What the parts that may hide a face whole settle along one direction.
@@ -42,14 +43,14 @@ const MAX_LOOSE: usize = 8;
 #[derive(Default)]
 pub(super) struct SettleScratch {
     /// Per direction, per part: the other parts' cover test against it whole.
-    part_covers: [Vec<PartCover>; 3],
+    part_covers: PerDirection<Vec<PartCover>>,
     /// The face's vertices projected across the direction being settled.
     across: Vec<DVec2>,
 }
 
 impl Visibility {
     /// Per direction: is `face` (on side `side`) hidden whole along it by one convex part
-    /// (first array), or can nothing shadow it along it (second)? What else its cover
+    /// (first), or can nothing shadow it along it (second)? What else its cover
     /// candidates settle goes to `cache.settled` ([`parts::Silhouette::cover`]).
     /// Parts are tested first against the face's whole part ([`Visibility::part_cover`]),
     /// then against the face.
@@ -58,15 +59,15 @@ impl Visibility {
         cache: &mut Cache,
         face: usize,
         side: FaceSide,
-        directions: &[Option<DVec3>; 3],
-    ) -> [[bool; 3]; 2] {
+        directions: &PerDirection<Option<DVec3>>,
+    ) -> (PerDirection<bool>, PerDirection<bool>) {
         let f = &self.faces[face];
         let side_index = side.index();
         let n = f.normal * side.sign();
         let covers = &f.covers[side_index];
-        let (mut hidden, mut clear) = ([false; 3], [false; 3]);
+        let (mut hidden, mut clear) = (PerDirection::splat(false), PerDirection::splat(false));
         if covers.is_empty() || f.vertices.is_empty() {
-            return [hidden, clear];
+            return (hidden, clear);
         }
         // beyond the convexity proof's tolerance, which the hull may stand out by
         let margin = 2.0 * self.tol;
@@ -83,7 +84,7 @@ impl Visibility {
             u64::MAX // never all settled: no direction is called clear
         };
         let x = &mut cache.settle;
-        for (k, d) in directions.iter().enumerate() {
+        for (k, d) in directions.pairs() {
             let Some(d) = *d else { continue };
             // the direction the shadows are cast along (`exact_area`'s)
             let cast = above_horizon(d, n);
@@ -102,7 +103,7 @@ impl Visibility {
                 }
                 if whole.hidden {
                     hidden[k] = true;
-                    if k == VIEW {
+                    if k == Toward::View {
                         break; // unseen: nothing else matters
                     }
                     continue;
@@ -148,7 +149,7 @@ impl Visibility {
                     Cover::Ahead | Cover::Unknown => {}
                 }
             }
-            if k == VIEW && hidden[VIEW] {
+            if k == Toward::View && hidden.view {
                 break; // unseen: nothing else matters
             }
             clear[k] = !hidden[k]
@@ -159,7 +160,7 @@ impl Visibility {
                     .iter()
                     .all(|&g| !self.may_block(face, n, g as usize, d));
         }
-        [hidden, clear]
+        (hidden, clear)
     }
 
     /// The cover test of every other part against part `p` as a whole along unit `d`
@@ -273,9 +274,13 @@ mod tests {
                     if (side == FaceSide::Back && !g.two_sided) || n.dot(view) <= 0.0 {
                         continue;
                     }
-                    let dirs = [Some(view), (n.dot(sun) > 0.0).then_some(sun), None];
+                    let dirs = PerDirection {
+                        view: Some(view),
+                        sun: (n.dot(sun) > 0.0).then_some(sun),
+                        earth: None,
+                    };
                     cache.settled.iter_mut().for_each(Settled::clear);
-                    let [dark, unshadowed] = vis.settle_by_parts(&mut cache, i, side, &dirs);
+                    let (dark, unshadowed) = vis.settle_by_parts(&mut cache, i, side, &dirs);
                     let points: Vec<DVec3> = (0..64)
                         .map(|_| {
                             let t = g.pieces[(rnd() * g.pieces.len() as f64) as usize];
@@ -286,7 +291,7 @@ mod tests {
                             t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b
                         })
                         .collect();
-                    for k in 0..2 {
+                    for k in [Toward::View, Toward::Sun] {
                         let Some(d) = dirs[k] else { continue };
                         let d = above_horizon(d, n);
                         if dark[k] {

@@ -75,6 +75,7 @@ impl Visibility {
             let mut lid_blockers = None;
             if let Some(cap) = own_cap {
                 let lid = self.parts[cap as usize]
+                    .convex
                     .lid
                     .as_ref()
                     .expect("caps have lids");
@@ -82,12 +83,13 @@ impl Visibility {
                 if lids[k] == LidState::Closed {
                     continue; // dark along d whatever else lies there
                 }
-                lid_blockers = self.lid_blockers[cap as usize]
+                lid_blockers = self.parts[cap as usize]
+                    .lid_blockers
                     .as_deref()
                     .filter(|b| b.len() <= GRID_MIN_FACES);
             }
             for (i, p) in shadowing.iter().enumerate() {
-                let (c, r) = self.part_spheres[p.part as usize];
+                let (c, r) = self.parts[p.part as usize].sphere;
                 if p.sides[side_index] && reaches(f.centroid, f.radius, c, r, d) {
                     cache.part_hits[k].push(i as u32);
                 }

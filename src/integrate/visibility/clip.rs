@@ -129,6 +129,7 @@ impl Visibility {
             if lids[k] == LidState::Clip {
                 // what of the face sees out of its own cap: the lid, projected back
                 let lid = self.parts[self.part_of[face] as usize]
+                    .convex
                     .lid
                     .as_ref()
                     .expect("caps have lids");
@@ -158,7 +159,7 @@ impl Visibility {
             // Convex parts: one hull each (see `parts`), from the part's silhouette.
             for &i in part_hits {
                 let ps = &f.part_shadows[i as usize];
-                let part = &self.parts[ps.part as usize];
+                let part = &self.parts[ps.part as usize].convex;
                 let hull = self.silhouette(silhouettes, ps.part, d);
                 x.shadow.clear();
                 if ps.cut {
@@ -187,7 +188,7 @@ impl Visibility {
             }
             // Parts wholly ahead of the face: their silhouettes, projected onto its plane.
             for &p in ahead {
-                let part = &self.parts[p as usize];
+                let part = &self.parts[p as usize].convex;
                 let hull = self.silhouette(silhouettes, p, d);
                 x.shadow.clear();
                 x.shadow.extend(
@@ -296,7 +297,12 @@ mod tests {
                     .any(|p| !p.cut && (p.sides[0] || p.sides[1]))
             })
             .count();
-        let cap_blockers: usize = vis.lid_blockers.iter().flatten().map(Vec::len).sum();
+        let cap_blockers: usize = vis
+            .parts
+            .iter()
+            .flat_map(|p| &p.lid_blockers)
+            .map(Vec::len)
+            .sum();
         assert!(
             cut > 0 && whole > 0 && cap_blockers > 0,
             "{cut} {whole} {cap_blockers}"

@@ -25,7 +25,7 @@ impl Visibility {
         earth: Option<DVec3>,
     ) -> Option<LidTable<'a>> {
         if !(self.mode == VisibilityMode::Adaptive && self.clip)
-            || self.cap_trees.iter().all(Option::is_none)
+            || self.parts.iter().all(|p| p.cap_tree.is_none())
         {
             return None;
         }
@@ -39,8 +39,8 @@ impl Visibility {
             let Some(d) = *d else { continue };
             let states = &mut cache.cap_states[k];
             states.resize_with(self.parts.len(), Default::default);
-            for (cap, tree) in self.cap_trees.iter().enumerate() {
-                if let (Some(tree), Some(lid)) = (tree, &self.parts[cap].lid) {
+            for (cap, p) in self.parts.iter().enumerate() {
+                if let (Some(tree), Some(lid)) = (&p.cap_tree, &p.convex.lid) {
                     states[cap].along(tree, lid, d, self.tol);
                 }
             }
@@ -113,6 +113,7 @@ impl Visibility {
     ) -> PerDirection<LidState> {
         let cap = self.part_of[face];
         let lid = self.parts[cap as usize]
+            .convex
             .lid
             .as_ref()
             .expect("caps have lids");
@@ -135,7 +136,8 @@ impl Visibility {
         if states.len() < self.parts.len() {
             states.resize_with(self.parts.len(), Default::default);
         }
-        let tree = self.cap_trees[cap as usize]
+        let tree = self.parts[cap as usize]
+            .cap_tree
             .as_ref()
             .expect("caps have trees");
         states[cap as usize].along(tree, lid, d, self.tol)[self.cap_slot[face] as usize]
@@ -154,7 +156,10 @@ impl Visibility {
         d: DVec3,
     ) -> Option<f64> {
         let f = &self.faces[face];
-        let lid = self.parts[self.part_of[face] as usize].lid.as_ref()?;
+        let lid = self.parts[self.part_of[face] as usize]
+            .convex
+            .lid
+            .as_ref()?;
         let convex = f.convex();
         let d = above_horizon(d, n);
         let dl = d.dot(lid.normal);
@@ -325,7 +330,7 @@ mod tests {
                     }
                     compared += 1;
                     let cap = vis.part_of[i];
-                    let lid = vis.parts[cap as usize].lid.as_ref().expect("lid");
+                    let lid = vis.parts[cap as usize].convex.lid.as_ref().expect("lid");
                     let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
                     let clipped = PerDirection {
                         view: Some(view),

@@ -127,31 +127,37 @@ pub struct Visibility {
     clip: bool,
     /// Cell size of the per-epoch face grids, m: the median face diameter.
     grid_cell: f64,
-    /// Connected convex pieces of the mesh (boxes, dishes): each casts its shadow on a
-    /// face wholly behind it as the hull of its projected vertices.
-    parts: Vec<ConvexPart>,
+    /// Connected convex pieces of the mesh (boxes, dishes), each with what the steps keep
+    /// of it: each casts its shadow on a face wholly behind it as the hull of its
+    /// projected vertices.
+    parts: Vec<PartEntry>,
     /// Each face's convex part (index into `parts`; `NO_PART` for none).
     part_of: Vec<u32>,
-    /// Each part's bounding sphere (centre, radius), m.
-    part_spheres: Vec<(DVec3, f64)>,
-    /// Each part's bounding box as its 8 corners, m ([`Visibility::part_cover`]).
-    part_boxes: Vec<[DVec3; 8]>,
     /// Faces of no part (a lone plate).
     loose: Vec<u32>,
-    /// Per part: planes its hull lies behind ([`parts::hull_planes`]); `None` for a part
-    /// that cannot hide a face whole.
-    part_planes: Vec<Option<Vec<(DVec3, f64)>>>,
-    /// Per part, per vertex: the cone of its faces' outward normals
-    /// ([`parts::normal_cones`]).
-    part_cones: Vec<Vec<[f64; 4]>>,
-    /// Per cap: the faces a ray leaving it from inside can meet ([`parts::lid_blockers`]).
-    lid_blockers: Vec<Option<Vec<u32>>>,
     /// Per patch: its faces grouped by part.
     patch_parts: PatchParts,
-    /// Per part: for a cap, its faces in a ball tree ([`caps`]).
-    cap_trees: Vec<Option<CapTree>>,
     /// Per face of a cap: its place in the cap's tree order.
     cap_slot: Vec<u32>,
+}
+
+/// One convex part and what the steps keep of it (an entry of `Visibility::parts`).
+struct PartEntry {
+    convex: ConvexPart,
+    /// Bounding sphere (centre, radius), m.
+    sphere: (DVec3, f64),
+    /// Bounding box as its 8 corners, m ([`Visibility::part_cover`]).
+    corners: [DVec3; 8],
+    /// Planes its hull lies behind ([`parts::hull_planes`]); `None` for a part that cannot
+    /// hide a face whole.
+    planes: Option<Vec<(DVec3, f64)>>,
+    /// Per vertex: the cone of its faces' outward normals ([`parts::normal_cones`]).
+    cones: Vec<[f64; 4]>,
+    /// For a cap: the faces a ray leaving it from inside can meet
+    /// ([`parts::lid_blockers`]).
+    lid_blockers: Option<Vec<u32>>,
+    /// For a cap: its faces in a ball tree ([`caps`]).
+    cap_tree: Option<CapTree>,
 }
 
 /// Per-thread scratch, and what one step hands the next for the face at hand. Each step
@@ -267,18 +273,21 @@ impl Visibility {
         let loose = (0..geoms.len() as u32)
             .filter(|&g| part_of[g as usize] == NO_PART)
             .collect();
+        let parts = part_table(
+            parts,
+            part_spheres,
+            part_boxes,
+            part_planes,
+            part_cones,
+            lid_blockers,
+            cap_trees,
+        );
         Visibility {
             mode,
             occluder,
             part_of,
-            part_spheres,
-            part_boxes,
             loose,
-            part_planes,
-            part_cones,
-            lid_blockers,
             patch_parts,
-            cap_trees,
             cap_slot,
             faces: geoms,
             patches,
@@ -394,6 +403,40 @@ impl Visibility {
         }
         (s.a_sun, s.a_earth, s.rays)
     }
+}
+
+/// The parts' entries from what [`Visibility::build`] made of them one list at a time.
+fn part_table(
+    parts: Vec<ConvexPart>,
+    spheres: Vec<(DVec3, f64)>,
+    boxes: Vec<[DVec3; 8]>,
+    planes: Vec<Option<Vec<(DVec3, f64)>>>,
+    cones: Vec<Vec<[f64; 4]>>,
+    lid_blockers: Vec<Option<Vec<u32>>>,
+    cap_trees: Vec<Option<CapTree>>,
+) -> Vec<PartEntry> {
+    parts
+        .into_iter()
+        .zip(spheres)
+        .zip(boxes)
+        .zip(planes)
+        .zip(cones)
+        .zip(lid_blockers)
+        .zip(cap_trees)
+        .map(
+            |((((((convex, sphere), corners), planes), cones), lid_blockers), cap_tree)| {
+                PartEntry {
+                    convex,
+                    sphere,
+                    corners,
+                    planes,
+                    cones,
+                    lid_blockers,
+                    cap_tree,
+                }
+            },
+        )
+        .collect()
 }
 
 /// View, Sun and earthshine directions that matter for a face of side normal `n`.

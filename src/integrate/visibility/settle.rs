@@ -76,7 +76,7 @@ impl Visibility {
         // saves many faces' tests; and nothing but other parts (and loose faces) can shadow
         // a face that faces out of its own convex part
         let whole_part = own != NO_PART
-            && self.parts[own as usize].faces.len() >= PART_COVER_MIN_FACES
+            && self.parts[own as usize].convex.faces.len() >= PART_COVER_MIN_FACES
             && self.parts.len() <= 64;
         let others = if whole_part && f.own_outside[side_index] {
             (u64::MAX >> (64 - self.parts.len())) & !(1u64 << own)
@@ -117,12 +117,12 @@ impl Visibility {
                     continue; // settled for the whole part
                 }
                 let p = part as usize;
-                let sphere = self.part_spheres[p];
+                let sphere = self.parts[p].sphere;
                 if !reaches(f.centroid, f.radius, sphere.0, sphere.1, d) {
                     settled.miss |= bit;
                     continue;
                 }
-                let Some(planes) = &self.part_planes[p] else {
+                let Some(planes) = &self.parts[p].planes else {
                     continue;
                 };
                 let Some(ahead) = (parts::Planes { planes, sphere }).settle(&f.vertices, d, margin)
@@ -167,16 +167,17 @@ impl Visibility {
     /// ([`parts::PartCover`]): against the convex hull of the corners of `p`'s bounding
     /// box, which holds every face of `p`, so what holds for it holds for each of them.
     fn part_cover(&self, silhouettes: &mut Vec<Silhouette>, p: usize, d: DVec3) -> PartCover {
-        let corners = &self.part_boxes[p];
+        let corners = &self.parts[p].corners;
         let (u, w) = Silhouette::axes(d);
         let across = corners.map(|c| DVec2::new(c.dot(u), c.dot(w)));
         let margin = 2.0 * self.tol;
-        let (centre, radius) = self.part_spheres[p];
+        let (centre, radius) = self.parts[p].sphere;
         let mut out = PartCover {
             dir: Some(d),
             ..PartCover::default()
         };
-        for (q, &sphere) in self.part_spheres.iter().enumerate().take(64) {
+        for (q, other) in self.parts.iter().enumerate().take(64) {
+            let sphere = other.sphere;
             let bit = 1u64 << q;
             if q == p {
                 continue;
@@ -185,7 +186,7 @@ impl Visibility {
                 out.miss |= bit;
                 continue;
             }
-            let Some(planes) = &self.part_planes[q] else {
+            let Some(planes) = &other.planes else {
                 continue;
             };
             let Some(ahead) = (parts::Planes { planes, sphere }).settle(corners, d, margin) else {
@@ -220,7 +221,8 @@ impl Visibility {
         }
         let p = part as usize;
         let hull = &mut silhouettes[p];
-        hull.along(&self.parts[p], &self.part_cones[p], d, self.tol);
+        let entry = &self.parts[p];
+        hull.along(&entry.convex, &entry.cones, d, self.tol);
         hull
     }
 }
@@ -250,7 +252,7 @@ mod tests {
                 .any(|(j, o)| j != face && o.pieces.iter().any(|t| ray_meets_triangle(p, d, t)))
         };
         let hits = |part: u32, p: DVec3, d: DVec3| {
-            vis.parts[part as usize].faces.iter().any(|&f| {
+            vis.parts[part as usize].convex.faces.iter().any(|&f| {
                 vis.faces[f as usize]
                     .pieces
                     .iter()

@@ -64,6 +64,15 @@ impl<T> PerDirection<T> {
         }
     }
 
+    /// A mutable reference to each value.
+    pub(super) fn each_mut(&mut self) -> PerDirection<&mut T> {
+        PerDirection {
+            view: &mut self.view,
+            sun: &mut self.sun,
+            earth: &mut self.earth,
+        }
+    }
+
     /// The values paired with `other`'s, direction by direction.
     pub(super) fn zip<U>(self, other: PerDirection<U>) -> PerDirection<(T, U)> {
         PerDirection {

@@ -6,7 +6,7 @@
 
 use super::clip::above_horizon;
 use super::direction::{PerDirection, Toward};
-use super::face::FaceSide;
+use super::face::{FaceGeom, FaceSide};
 use super::parts::{self, Cover, PartCover, Silhouette};
 use super::proofs::reaches;
 use super::{Cache, Visibility, NO_PART};
@@ -69,8 +69,6 @@ impl Visibility {
         if covers.is_empty() || f.vertices.is_empty() {
             return (hidden, clear);
         }
-        // beyond the convexity proof's tolerance, which the hull may stand out by
-        let margin = 2.0 * self.tol;
         let own = self.part_of[face];
         // the face's part as a whole is tested only for parts of many faces, where it
         // saves many faces' tests; and nothing but other parts (and loose faces) can shadow
@@ -93,14 +91,7 @@ impl Visibility {
             let (silhouettes, settled) = (&mut cache.silhouettes[k], &mut cache.settled[k]);
             // (a face whose horizon bends the direction has its own: no part's result)
             if whole_part && cast == d {
-                let covers = &mut x.part_covers[k];
-                if covers.len() < self.parts.len() {
-                    covers.resize_with(self.parts.len(), Default::default);
-                }
-                let whole = &mut covers[own as usize];
-                if whole.dir != Some(d) {
-                    *whole = self.part_cover(silhouettes, own as usize, d);
-                }
+                let whole = self.own_part_cover(&mut x.part_covers[k], silhouettes, own, d);
                 if whole.hidden {
                     hidden[k] = true;
                     if k == Toward::View {
@@ -111,44 +102,7 @@ impl Visibility {
                 settled.miss |= whole.miss;
             }
             let d = cast;
-            for &part in covers {
-                let bit = if part < 64 { 1u64 << part } else { 0 };
-                if settled.miss & bit != 0 {
-                    continue; // settled for the whole part
-                }
-                let p = part as usize;
-                let sphere = self.parts[p].sphere;
-                if !reaches(f.centroid, f.radius, sphere.0, sphere.1, d) {
-                    settled.miss |= bit;
-                    continue;
-                }
-                let Some(planes) = &self.parts[p].planes else {
-                    continue;
-                };
-                let Some(ahead) = (parts::Planes { planes, sphere }).settle(&f.vertices, d, margin)
-                else {
-                    settled.miss |= bit;
-                    continue;
-                };
-                if x.across.is_empty() {
-                    let (u, w) = Silhouette::axes(d);
-                    x.across
-                        .extend(f.vertices.iter().map(|p| DVec2::new(p.dot(u), p.dot(w))));
-                }
-                let hull = self.silhouette(silhouettes, part, d);
-                match hull.cover(ahead, &x.across, margin) {
-                    Cover::Hidden => {
-                        hidden[k] = true;
-                        break;
-                    }
-                    Cover::Miss => settled.miss |= bit,
-                    Cover::Ahead if bit != 0 => {
-                        settled.ahead.push(part);
-                        settled.ahead_bits |= bit;
-                    }
-                    Cover::Ahead | Cover::Unknown => {}
-                }
-            }
+            hidden[k] = self.settle_by_covers(f, covers, d, silhouettes, settled, &mut x.across);
             if k == Toward::View && hidden.view {
                 break; // unseen: nothing else matters
             }
@@ -161,6 +115,78 @@ impl Visibility {
                     .all(|&g| !self.may_block(face, n, g as usize, d));
         }
         (hidden, clear)
+    }
+
+    /// The cover test of every other part against `face`'s own part `own` as a whole
+    /// along unit `d` ([`Visibility::part_cover`]), kept in `covers` (the direction's,
+    /// per part) until the direction changes.
+    fn own_part_cover<'c>(
+        &self,
+        covers: &'c mut Vec<PartCover>,
+        silhouettes: &mut Vec<Silhouette>,
+        own: u32,
+        d: DVec3,
+    ) -> &'c PartCover {
+        if covers.len() < self.parts.len() {
+            covers.resize_with(self.parts.len(), Default::default);
+        }
+        let whole = &mut covers[own as usize];
+        if whole.dir != Some(d) {
+            *whole = self.part_cover(silhouettes, own as usize, d);
+        }
+        whole
+    }
+
+    /// The cover test of face `f`'s candidate parts `covers` along `d` (the direction the
+    /// shadows are cast along): whether one hides it whole; the parts it misses, and
+    /// those wholly ahead of it, go to `settled`. `across`: the face's corners projected
+    /// across `d`, filled on first use (empty on entry).
+    fn settle_by_covers(
+        &self,
+        f: &FaceGeom,
+        covers: &[u32],
+        d: DVec3,
+        silhouettes: &mut Vec<Silhouette>,
+        settled: &mut Settled,
+        across: &mut Vec<DVec2>,
+    ) -> bool {
+        // beyond the convexity proof's tolerance, which the hull may stand out by
+        let margin = 2.0 * self.tol;
+        for &part in covers {
+            let bit = if part < 64 { 1u64 << part } else { 0 };
+            if settled.miss & bit != 0 {
+                continue; // settled for the whole part
+            }
+            let p = part as usize;
+            let sphere = self.parts[p].sphere;
+            if !reaches(f.centroid, f.radius, sphere.0, sphere.1, d) {
+                settled.miss |= bit;
+                continue;
+            }
+            let Some(planes) = &self.parts[p].planes else {
+                continue;
+            };
+            let Some(ahead) = (parts::Planes { planes, sphere }).settle(&f.vertices, d, margin)
+            else {
+                settled.miss |= bit;
+                continue;
+            };
+            if across.is_empty() {
+                let (u, w) = Silhouette::axes(d);
+                across.extend(f.vertices.iter().map(|p| DVec2::new(p.dot(u), p.dot(w))));
+            }
+            let hull = self.silhouette(silhouettes, part, d);
+            match hull.cover(ahead, across, margin) {
+                Cover::Hidden => return true,
+                Cover::Miss => settled.miss |= bit,
+                Cover::Ahead if bit != 0 => {
+                    settled.ahead.push(part);
+                    settled.ahead_bits |= bit;
+                }
+                Cover::Ahead | Cover::Unknown => {}
+            }
+        }
+        false
     }
 
     /// The cover test of every other part against part `p` as a whole along unit `d`

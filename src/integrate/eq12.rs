@@ -5,7 +5,7 @@
 //! band irradiance multiplies a purely geometric sum. A wavelength-dependent n(λ), k(λ)
 //! would evaluate the face sum per spectral bin and weight by the bin's irradiance.
 
-use super::visibility::Uncertain;
+use super::visibility::{FaceSide, Uncertain};
 use super::{Occlusion, Prepared};
 use crate::brdf::earth_light::EarthLight;
 use crate::brdf::sun_disk::{EarthDisk, SunLight};
@@ -34,8 +34,8 @@ struct MaterialLight<'a> {
 /// A face that reflects light towards the observer at this epoch.
 struct LitFace {
     face: u32,
-    /// +1 front side seen, −1 back side (two-sided materials).
-    side: f64,
+    /// The side seen (the back only of two-sided materials).
+    side: FaceSide,
     /// Sun term f·cosθi·cosθr·E_s, W/(m²·sr) per m² of face.
     sun: f64,
     /// Earthshine term Σ f·cosθi·cosθr·E_beam, W/(m²·sr) per m² of face.
@@ -188,14 +188,14 @@ fn lit_faces(
         let light = &lights[face.material as usize];
         let cr = face.normal.dot(v);
         let side = if cr > 0.0 {
-            1.0
+            FaceSide::Front
         } else if light.two_sided && cr < 0.0 {
-            -1.0
+            FaceSide::Back
         } else {
             continue;
         };
         let frame = Frame {
-            n: face.normal * side,
+            n: face.normal * side.sign(),
             t: face.tangent,
         };
         // n·v on the side seen, for every light: (side·n)·v is side·(n·v) exactly
@@ -254,7 +254,7 @@ fn visible_sums(
         Occlusion::Image(img) => {
             let faces = lit
                 .iter()
-                .map(|lf| (lf.face, lf.side, lf.sun > 0.0, lf.earth > 0.0));
+                .map(|lf| (lf.face, lf.side.sign(), lf.sun > 0.0, lf.earth > 0.0));
             let rays = img.sample(
                 image, &p.faces, faces, dirs.view, dirs.sun, dirs.earth, cancelled,
             );

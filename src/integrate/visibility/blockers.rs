@@ -5,8 +5,8 @@
 //! its lid), are left out.
 
 use super::caps::LidState;
-use super::face::side_index;
-use super::face::PartShadow;
+use super::direction::{PerDirection, Toward};
+use super::face::{FaceSide, PartShadow};
 use super::grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
 use super::proofs::{outline_clear, reaches, reaches_front, LARGE_BLOCKER};
 use super::{Cache, Visibility, NO_PART};
@@ -22,32 +22,37 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
-        directions: &[Option<DVec3>; 3],
+        side: FaceSide,
+        directions: &PerDirection<Option<DVec3>>,
         whole: bool,
-        out: &mut [Vec<Blocker>; 3],
-    ) -> [LidState; 3] {
+        out: &mut PerDirection<Vec<Blocker>>,
+    ) -> PerDirection<LidState> {
         let f = &self.faces[face];
-        let n = f.normal * side;
-        let side_index = side_index(side);
-        let key = (f.patch, side > 0.0);
+        let n = f.normal * side.sign();
+        let key = (f.patch, side);
         if cache.search.key != Some(key) {
             cache.search.reset();
             cache.search.key = Some(key);
         }
         cache.part_hits.iter_mut().for_each(Vec::clear);
+        let left = self.left_out(face, side, whole);
+        let mut lids = PerDirection::splat(LidState::Open);
+        for (k, d) in directions.pairs() {
+            let Some(d) = *d else { continue };
+            lids[k] = self.blockers_along(cache, face, n, k, d, whole, &left, &mut out[k]);
+        }
+        lids
+    }
+
+    /// The parts whose faces the search for `face`'s blockers (on side `side`) leaves out
+    /// along every direction: parts cast whole or wholly behind the face (with `whole`),
+    /// and the face's own part where it faces away from it or into its lid.
+    fn left_out(&self, face: usize, side: FaceSide, whole: bool) -> LeftOut<'_> {
+        let f = &self.faces[face];
+        let side_index = side.index();
         let own_cap = (whole && self.clip && f.lid_side[side_index]).then(|| self.part_of[face]);
         let shadowing: &[PartShadow] = if whole { &f.part_shadows } else { &[] };
-        // parts cast whole or wholly behind the face, and the face's own part where it
-        // faces away from it or into its lid: their faces are not collected
         let own_outside = f.own_outside[side_index].then(|| self.part_of[face]);
-        let skipped = |part: u32| {
-            own_cap == Some(part)
-                || own_outside == Some(part)
-                || shadowing
-                    .iter()
-                    .any(|p| p.part == part && (p.sides[side_index] || p.behind[side_index]))
-        };
         // the first 64 parts as bits: asked once per face of every patch searched
         let bit = |p: u32| if p < 64 { 1u64 << p } else { 0 };
         let mask = shadowing
@@ -57,117 +62,160 @@ impl Visibility {
             .chain(own_cap.map(bit))
             .chain(own_outside.map(bit))
             .fold(0, |m, b| m | b);
-        let left_out_by = |mask: u64, part: u32| {
-            if part < 64 {
-                mask & (1 << part) != 0
-            } else {
-                part != NO_PART && skipped(part)
+        LeftOut {
+            own_cap,
+            own_outside,
+            shadowing,
+            side_index,
+            mask,
+        }
+    }
+
+    /// The possible blockers of `face` (side normal `n`) along `d` (direction `k`), into
+    /// `out`, but the faces of the parts `left` leaves out; returns the state of the
+    /// face's own lid along `d` (`Open` unless it faces into its cap and `whole`).
+    #[allow(clippy::too_many_arguments)]
+    fn blockers_along(
+        &self,
+        cache: &mut Cache,
+        face: usize,
+        n: DVec3,
+        k: Toward,
+        d: DVec3,
+        whole: bool,
+        left: &LeftOut,
+        out: &mut Vec<Blocker>,
+    ) -> LidState {
+        let f = &self.faces[face];
+        // and the parts this direction's cover test settled: missing the face, or (when
+        // clipping) cast whole
+        let settled = &cache.settled[k];
+        let mask = left.mask | settled.miss | if whole { settled.ahead_bits } else { 0 };
+        let left_out = |part: u32| left.by(mask, part);
+        let mut lid_state = LidState::Open;
+        let mut lid_blockers = None;
+        if let Some(cap) = left.own_cap {
+            let entry = &self.parts[cap as usize];
+            let lid = entry.convex.lid.as_ref().expect("caps have lids");
+            lid_state = self.lid_state(&mut cache.cap_states[k], lid, cap, face, d);
+            if lid_state == LidState::Closed {
+                return lid_state; // dark along d whatever else lies there
             }
-        };
-        let mut lids = [LidState::Open; 3];
-        for (k, d) in directions.iter().enumerate() {
-            let Some(d) = *d else { continue };
-            // and the parts this direction's cover test settled: missing the face, or
-            // (when clipping) cast whole
-            let settled = &cache.settled[k];
-            let mask = mask | settled.miss | if whole { settled.ahead_bits } else { 0 };
-            let left_out = |part: u32| left_out_by(mask, part);
-            let mut lid_blockers = None;
-            if let Some(cap) = own_cap {
-                let lid = self.parts[cap as usize]
-                    .lid
-                    .as_ref()
-                    .expect("caps have lids");
-                lids[k] = self.lid_state(&mut cache.cap_states[k], lid, cap, face, d);
-                if lids[k] == LidState::Closed {
-                    continue; // dark along d whatever else lies there
-                }
-                lid_blockers = self.lid_blockers[cap as usize]
-                    .as_deref()
-                    .filter(|b| b.len() <= GRID_MIN_FACES);
-            }
-            for (i, p) in shadowing.iter().enumerate() {
-                let (c, r) = self.part_spheres[p.part as usize];
-                if p.sides[side_index] && reaches(f.centroid, f.radius, c, r, d) {
-                    cache.part_hits[k].push(i as u32);
-                }
-            }
-            let project = |proj: &mut Projection| {
-                if proj.dir != Some(d) {
-                    proj.build(&self.faces, d);
-                }
-            };
-            if let Some(list) = lid_blockers {
-                // a cap's inner face: only what lies in front of its lid or in its hull
-                for &g in list {
-                    if !left_out(self.part_of[g as usize]) {
-                        let along = Along::Direction(d);
-                        self.consider_blocker(face, n, g as usize, along, &mut out[k]);
-                    }
-                }
-                continue;
-            }
-            let flagged =
-                cache.search.flagged[k].get_or_insert_with(|| self.flag_patches(f.patch, d));
-            // faces to test: those of the flagged patches but the parts left out (a mask
-            // says which when there are few parts)
-            let cached = self.parts.len() <= 64;
-            let kept = match &mut cache.search.kept[k] {
-                Some(kept) if cached && kept.mask == mask => kept,
-                slot => {
-                    let mut kept = Kept {
-                        mask,
-                        patches: Vec::new(),
-                        count: 0,
-                    };
-                    for &p in flagged.iter() {
-                        let n = self.patch_parts.count(p, left_out);
-                        if n > 0 {
-                            kept.patches.push(p);
-                            kept.count += n;
-                        }
-                    }
-                    slot.insert(kept)
-                }
-            };
-            let count = kept.count;
-            if count == 0 {
-                continue;
-            }
-            let out = &mut out[k];
-            if count > GRID_MIN_FACES {
-                project(&mut cache.search.projections[k]);
-                let proj = &cache.search.projections[k];
-                // many faces to test (a finely meshed curved part): ask the epoch's grid of
-                // faces seen along d for those whose shadow can fall on this one
-                // (a cap's own faces left out of the grid: there are many)
-                let grid = &mut cache.search.grids[k][usize::from(own_cap.is_some())];
-                if grid.dir != Some(d) || grid.excluded != own_cap {
-                    grid.build(proj, self.grid_cell, own_cap, &self.part_of);
-                }
-                let at = &proj.at[face];
-                let centre = DVec2::new(at[0], at[1]);
-                grid.query(centre, at[3], &mut cache.search.stamp, |g| {
-                    if !left_out(self.part_of[g as usize]) {
-                        self.consider_blocker(face, n, g as usize, Along::Projected(proj), out)
-                    }
-                });
-            } else {
-                for &p in &kept.patches {
-                    // the patch test was for the receiver's whole patch: this face may be
-                    // out of reach
-                    let pp = &self.patches[p as usize];
-                    if reaches(f.centroid, f.radius, pp.centre, pp.radius, d) {
-                        // few faces: their spheres tested as they are, with no
-                        // projection of every face built for them
-                        for g in self.patch_parts.faces(p, left_out) {
-                            self.consider_blocker(face, n, g as usize, Along::Direction(d), out);
-                        }
-                    }
-                }
+            lid_blockers = entry
+                .lid_blockers
+                .as_deref()
+                .filter(|b| b.len() <= GRID_MIN_FACES);
+        }
+        for (i, p) in left.shadowing.iter().enumerate() {
+            let (c, r) = self.parts[p.part as usize].sphere;
+            if p.sides[left.side_index] && reaches(f.centroid, f.radius, c, r, d) {
+                cache.part_hits[k].push(i as u32);
             }
         }
-        lids
+        if let Some(list) = lid_blockers {
+            // a cap's inner face: only what lies in front of its lid or in its hull
+            for &g in list {
+                if !left_out(self.part_of[g as usize]) {
+                    let along = Along::Direction(d);
+                    self.consider_blocker(face, n, g as usize, along, out);
+                }
+            }
+            return lid_state;
+        }
+        let kept = self.kept_patches(&mut cache.search, f.patch, k, d, mask, left_out);
+        if kept.count == 0 {
+            return lid_state;
+        }
+        if kept.count <= GRID_MIN_FACES {
+            for &p in &kept.patches {
+                // the patch test was for the receiver's whole patch: this face may be
+                // out of reach
+                let pp = &self.patches[p as usize];
+                if reaches(f.centroid, f.radius, pp.centre, pp.radius, d) {
+                    // few faces: their spheres tested as they are, with no
+                    // projection of every face built for them
+                    for g in self.patch_parts.faces(p, left_out) {
+                        self.consider_blocker(face, n, g as usize, Along::Direction(d), out);
+                    }
+                }
+            }
+            return lid_state;
+        }
+        let search = &mut cache.search;
+        self.search_grid(search, face, n, k, d, left.own_cap, left_out, out);
+        lid_state
+    }
+
+    /// The occluder patches flagged for the receiver patch `patch` along `d` (direction
+    /// `k`) that have faces to test when the parts in `mask` are left out, with their
+    /// count: from `search` when it holds them for that mask.
+    fn kept_patches<'s>(
+        &self,
+        search: &'s mut SearchScratch,
+        patch: u32,
+        k: Toward,
+        d: DVec3,
+        mask: u64,
+        left_out: impl Fn(u32) -> bool + Copy,
+    ) -> &'s Kept {
+        let flagged = search.flagged[k].get_or_insert_with(|| self.flag_patches(patch, d));
+        // faces to test: those of the flagged patches but the parts left out (a mask
+        // says which when there are few parts)
+        let cached = self.parts.len() <= 64;
+        let stale = |kept: &Kept| !(cached && kept.mask == mask);
+        let slot = &mut search.kept[k];
+        if slot.as_ref().is_some_and(stale) {
+            *slot = None;
+        }
+        slot.get_or_insert_with(|| {
+            let mut kept = Kept {
+                mask,
+                patches: Vec::new(),
+                count: 0,
+            };
+            for &p in flagged.iter() {
+                let n = self.patch_parts.count(p, left_out);
+                if n > 0 {
+                    kept.patches.push(p);
+                    kept.count += n;
+                }
+            }
+            kept
+        })
+    }
+
+    /// Many faces to test (a finely meshed curved part): asks the epoch's grid of faces
+    /// seen along `d` (direction `k`) for those whose shadow can fall on `face` (side
+    /// normal `n`), and tests those not `left_out` (a cap's own faces, `own_cap`, are left
+    /// out of the grid: there are many).
+    #[allow(clippy::too_many_arguments)]
+    fn search_grid(
+        &self,
+        search: &mut SearchScratch,
+        face: usize,
+        n: DVec3,
+        k: Toward,
+        d: DVec3,
+        own_cap: Option<u32>,
+        left_out: impl Fn(u32) -> bool,
+        out: &mut Vec<Blocker>,
+    ) {
+        let proj = &mut search.projections[k];
+        if proj.dir != Some(d) {
+            proj.build(&self.faces, d);
+        }
+        let proj = &search.projections[k];
+        let grid = &mut search.grids[k][usize::from(own_cap.is_some())];
+        if grid.dir != Some(d) || grid.excluded != own_cap {
+            grid.build(proj, self.grid_cell, own_cap, &self.part_of);
+        }
+        let at = &proj.at[face];
+        let centre = DVec2::new(at[0], at[1]);
+        grid.query(centre, at[3], &mut search.stamp, |g| {
+            if !left_out(self.part_of[g as usize]) {
+                self.consider_blocker(face, n, g as usize, Along::Projected(proj), out)
+            }
+        });
     }
 
     /// Face-level tests of face `g` as a blocker of `face` (side normal `n`) along `d`;
@@ -285,19 +333,19 @@ enum Along<'a> {
 /// patch and side last searched, and the faces seen along each direction.
 #[derive(Default)]
 pub(super) struct SearchScratch {
-    /// The receiver patch, and whether its front side, that the results below are for.
-    key: Option<(u32, bool)>,
+    /// The receiver patch, and its side, that the results below are for.
+    key: Option<(u32, FaceSide)>,
     /// Flagged occluder patches for view, sun, earth (None: not computed yet).
-    flagged: [Option<Vec<u32>>; 3],
+    flagged: PerDirection<Option<Vec<u32>>>,
     /// Per direction: of the flagged patches, those with faces to test when the parts in
     /// a mask are left out, with their count — for the last mask asked (faces of a patch
     /// mostly share theirs).
-    kept: [Option<Kept>; 3],
+    kept: PerDirection<Option<Kept>>,
     /// Faces' bounding spheres seen along each direction (built on first use in an epoch).
-    projections: [Projection; 3],
+    projections: PerDirection<Projection>,
     /// Faces binned across each direction (built on first use in an epoch): all, and all
     /// but a cap's (for the cap's own faces, [`Visibility::collect_blockers`]).
-    grids: [[FaceGrid; 2]; 3],
+    grids: PerDirection<[FaceGrid; 2]>,
     /// Per face: the query that last returned it (deduplicates multi-cell faces).
     stamp: Stamp,
 }
@@ -307,8 +355,47 @@ impl SearchScratch {
     /// grids are keyed by their direction and kept.
     pub(super) fn reset(&mut self) {
         self.key = None;
-        self.flagged = [None, None, None];
-        self.kept = [None, None, None];
+        self.flagged = PerDirection::default();
+        self.kept = PerDirection::default();
+    }
+}
+
+/// The parts whose faces a face's blocker search leaves out
+/// ([`Visibility::left_out`]).
+struct LeftOut<'a> {
+    /// The face's own cap, when it faces into it (decided by the lid).
+    own_cap: Option<u32>,
+    /// The face's own part, when it faces out of it.
+    own_outside: Option<u32>,
+    /// The parts that may shadow the face whole (none unless clipping).
+    shadowing: &'a [PartShadow],
+    /// The face's side, as an index into its per-side arrays.
+    side_index: usize,
+    /// Of the first 64 parts, those left out (bit p for part p).
+    mask: u64,
+}
+
+impl LeftOut<'_> {
+    /// Is `part` left out, given `mask` (this one's and what a direction adds)? Asked by
+    /// bit for the first 64 parts; the rest one by one.
+    fn by(&self, mask: u64, part: u32) -> bool {
+        if part < 64 {
+            mask & (1 << part) != 0
+        } else {
+            part != NO_PART && self.skipped(part)
+        }
+    }
+
+    /// Parts cast whole or wholly behind the face, and the face's own part where it
+    /// faces away from it or into its lid: their faces are not collected.
+    fn skipped(&self, part: u32) -> bool {
+        let s = self.side_index;
+        self.own_cap == Some(part)
+            || self.own_outside == Some(part)
+            || self
+                .shadowing
+                .iter()
+                .any(|p| p.part == part && (p.sides[s] || p.behind[s]))
     }
 }
 

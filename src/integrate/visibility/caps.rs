@@ -346,10 +346,10 @@ mod tests {
         let cap = vis
             .parts
             .iter()
-            .position(|p| p.lid.is_some())
+            .position(|p| p.convex.lid.is_some())
             .expect("the dish") as u32;
-        let lid = vis.parts[cap as usize].lid.as_ref().expect("lid");
-        let tree = vis.cap_trees[cap as usize].as_ref().expect("tree");
+        let lid = vis.parts[cap as usize].convex.lid.as_ref().expect("lid");
+        let tree = vis.parts[cap as usize].cap_tree.as_ref().expect("tree");
         let mut dish = crate::geometry::Mesh::default();
         dish.vertices = mesh.vertices.clone();
         dish.triangles = mesh

@@ -5,8 +5,9 @@
 
 use super::blockers::Blocker;
 use super::caps::LidState;
+use super::direction::{PerDirection, Toward};
 use super::parts::Silhouette;
-use super::{Cache, Visibility, EARTH, SUN, VIEW};
+use super::{Cache, Visibility};
 use crate::geometry::polygon::{convex_hull, Region};
 use glam::{DVec2, DVec3};
 
@@ -90,169 +91,67 @@ impl Visibility {
         cache: &mut Cache,
         face: usize,
         n: DVec3,
-        dirs: &[Option<DVec3>; 3],
-        blockers: &[Vec<Blocker>; 3],
-        lids: &[LidState; 3],
+        dirs: &PerDirection<Option<DVec3>>,
+        blockers: &PerDirection<Vec<Blocker>>,
+        lids: &PerDirection<LidState>,
     ) -> Option<(f64, f64)> {
         let dirs = dirs.map(|d| d.map(|d| above_horizon(d, n)));
         let x = &mut cache.clip;
         let f = &self.faces[face];
-        let (u, w) = crate::geometry::orthonormal_basis(n);
-        let c = f.centroid;
-        let plane = |p: DVec3| {
-            let r = p - c;
-            DVec2::new(r.dot(u), r.dot(w))
-        };
+        let plane = FacePlane::new(f.centroid, n);
         x.lit.reset(f.radius);
         let poly = &mut x.shadows.shadow;
         for p in f.polygons() {
             poly.clear();
-            poly.extend(p.iter().map(|p| plane(*p)));
+            poly.extend(p.iter().map(|p| plane.at(*p)));
             x.lit.add_convex(poly);
         }
-        // view first: both the sunlit and the earthlit parts must be seen
-        let tol = self.tol;
-        let shadows = |region: &mut Region,
-                       k: usize,
-                       x: &mut ShadowBuffers,
-                       silhouettes: &mut Vec<Silhouette>,
-                       part_hits: &[u32],
-                       ahead: &[u32]|
-         -> Option<()> {
+        let silhouettes = cache.silhouettes.each_mut();
+        // one direction's shadows cast on `region`
+        let cast = |region: &mut Region,
+                    k: Toward,
+                    x: &mut ShadowBuffers,
+                    silhouettes: &mut Vec<Silhouette>| {
             let Some(d) = dirs[k] else { return Some(()) };
-            let along = DVec2::new(d.dot(u), d.dot(w)) / n.dot(d);
-            let project = |y: DVec3| {
-                let h = n.dot(y - c);
-                (plane(y) - along * h, h)
+            let mut shadows = Shadows {
+                vis: self,
+                face,
+                d,
+                to_plane: ToPlane {
+                    plane,
+                    along: plane.along(d),
+                },
+                x,
+                silhouettes,
             };
-            if lids[k] == LidState::Clip {
-                // what of the face sees out of its own cap: the lid, projected back
-                let lid = self.parts[self.part_of[face] as usize]
-                    .lid
-                    .as_ref()
-                    .expect("caps have lids");
-                x.shadow.clear();
-                let convex = f.convex();
-                if convex.is_empty() {
-                    x.shadow.extend(lid.corners.iter().map(|y| project(*y).0));
-                } else {
-                    // Clipped in the lid's plane: the face (convex) seen along d on the
-                    // lid's plane, cut to the lid, and brought back. Only the few rim edges
-                    // near it cut, where projecting the whole rim onto the face costs a
-                    // pass over every corner and edge (measured: a tenth of the fine dish's
-                    // epoch).
-                    let mut poly = std::mem::take(&mut x.part_points);
-                    poly.clear();
-                    poly.extend(convex.iter().map(|p| lid.meet(*p, d)));
-                    lid.clip(&mut poly, &mut x.lid_edges, &mut x.shadow);
-                    x.shadow.clear();
-                    x.shadow.extend(poly.iter().map(|q| project(lid.at(*q)).0));
-                    x.part_points = poly;
-                }
-                region.intersect_convex(&x.shadow);
-                if region.is_empty() {
-                    return Some(());
-                }
-            }
-            // Convex parts: one hull each (see `parts`), from the part's silhouette.
-            for &i in part_hits {
-                let ps = &f.part_shadows[i as usize];
-                let part = &self.parts[ps.part as usize];
-                let hull = self.silhouette(silhouettes, ps.part, d);
-                x.shadow.clear();
-                if ps.cut {
-                    x.part_points.clear();
-                    for &j in hull.near(tol) {
-                        let (p, h) = project(part.vertices[j as usize]);
-                        if h >= -tol {
-                            x.part_points.push(p);
-                        }
-                    }
-                    x.part_points
-                        .extend(ps.crossings.iter().map(|y| project(*y).0));
-                    convex_hull(&x.part_points, &mut x.hull_order, &mut x.shadow);
-                } else {
-                    // the projection onto this plane is affine: the same corners, in order
-                    x.shadow.extend(
-                        hull.corners
-                            .iter()
-                            .map(|&j| project(part.vertices[j as usize]).0),
-                    );
-                }
-                region.subtract_convex(&x.shadow, MAX_PIECES).ok()?;
-                if region.is_empty() {
-                    return Some(());
-                }
-            }
-            // Parts wholly ahead of the face: their silhouettes, projected onto its plane.
-            for &p in ahead {
-                let part = &self.parts[p as usize];
-                let hull = self.silhouette(silhouettes, p, d);
-                x.shadow.clear();
-                x.shadow.extend(
-                    hull.corners
-                        .iter()
-                        .map(|&j| project(part.vertices[j as usize]).0),
-                );
-                region.subtract_convex(&x.shadow, MAX_PIECES).ok()?;
-                if region.is_empty() {
-                    return Some(());
-                }
-            }
-            for b in &blockers[k] {
-                let o = &self.faces[b.face as usize];
-                for p in o.polygons() {
-                    // project each vertex along d onto the plane; h is its height above it
-                    x.clip_in.clear();
-                    x.clip_in.extend(p.iter().map(|y| project(*y)));
-                    clip_above(&x.clip_in, self.tol, &mut x.shadow);
-                    if x.shadow.len() >= 3 {
-                        region.subtract_convex(&x.shadow, MAX_PIECES).ok()?;
-                        if region.is_empty() {
-                            return Some(());
-                        }
-                    }
-                }
-            }
-            Some(())
+            shadows.cast(
+                region,
+                lids[k] == LidState::Clip,
+                &cache.part_hits[k],
+                &cache.settled[k].ahead,
+                &blockers[k],
+            )
         };
-        let [sv, ss, se] = &mut cache.silhouettes;
-        let [av, as_, ae] = &cache.settled;
-        shadows(
-            &mut x.lit,
-            VIEW,
-            &mut x.shadows,
-            sv,
-            &cache.part_hits[VIEW],
-            &av.ahead,
-        )?;
+        // view first: both the sunlit and the earthlit parts must be seen
+        cast(&mut x.lit, Toward::View, &mut x.shadows, silhouettes.view)?;
         let seen = x.lit.area();
         if x.lit.is_empty() {
             return Some((0.0, 0.0)); // hidden: nothing to light
         }
-        let a_earth = if dirs[EARTH].is_some() {
+        let a_earth = if dirs.earth.is_some() {
             x.earthlit.clone_from(&x.lit);
-            shadows(
+            cast(
                 &mut x.earthlit,
-                EARTH,
+                Toward::Earth,
                 &mut x.shadows,
-                se,
-                &cache.part_hits[EARTH],
-                &ae.ahead,
+                silhouettes.earth,
             )?;
             x.earthlit.area()
         } else {
             seen
         };
-        let a_sun = if dirs[SUN].is_some() {
-            shadows(
-                &mut x.lit,
-                SUN,
-                &mut x.shadows,
-                ss,
-                &cache.part_hits[SUN],
-                &as_.ahead,
-            )?;
+        let a_sun = if dirs.sun.is_some() {
+            cast(&mut x.lit, Toward::Sun, &mut x.shadows, silhouettes.sun)?;
             x.lit.area()
         } else {
             seen
@@ -261,10 +160,228 @@ impl Visibility {
     }
 }
 
+/// A face's plane: 2-D coordinates in it about the face's centroid, and the projection
+/// onto it along a direction.
+#[derive(Clone, Copy)]
+struct FacePlane {
+    /// Side normal.
+    n: DVec3,
+    /// The face's centroid, the origin of the coordinates.
+    c: DVec3,
+    /// The plane's axes.
+    u: DVec3,
+    w: DVec3,
+}
+
+impl FacePlane {
+    fn new(c: DVec3, n: DVec3) -> FacePlane {
+        let (u, w) = crate::geometry::orthonormal_basis(n);
+        FacePlane { n, c, u, w }
+    }
+
+    /// `p`'s coordinates in the plane (its foot along the normal).
+    #[inline]
+    fn at(&self, p: DVec3) -> DVec2 {
+        let r = p - self.c;
+        DVec2::new(r.dot(self.u), r.dot(self.w))
+    }
+
+    /// How far a point's projection along `d` moves in the plane per metre of height.
+    fn along(&self, d: DVec3) -> DVec2 {
+        DVec2::new(d.dot(self.u), d.dot(self.w)) / self.n.dot(d)
+    }
+}
+
+/// The projection along a direction onto a face's plane.
+#[derive(Clone, Copy)]
+struct ToPlane {
+    plane: FacePlane,
+    /// [`FacePlane::along`] the direction.
+    along: DVec2,
+}
+
+impl ToPlane {
+    /// `y` projected along the direction onto the plane, and its height above the plane.
+    #[inline]
+    fn project(&self, y: DVec3) -> (DVec2, f64) {
+        let h = self.plane.n.dot(y - self.plane.c);
+        (self.plane.at(y) - self.along * h, h)
+    }
+}
+
+/// One direction's shadows cast on a face: the direction, the projection onto the face's
+/// plane, and the buffers the shadow polygons are built in.
+struct Shadows<'a> {
+    vis: &'a Visibility,
+    face: usize,
+    d: DVec3,
+    to_plane: ToPlane,
+    x: &'a mut ShadowBuffers,
+    /// The direction's silhouettes of the parts.
+    silhouettes: &'a mut Vec<Silhouette>,
+}
+
+impl Shadows<'_> {
+    /// Takes from `region` what the direction's blockers hide: the lid's outside (when
+    /// `through_lid`), then the parts that shadow the face whole (`part_hits`), the parts
+    /// wholly ahead of it (`ahead`), and the blocker faces. `None` when that cuts it into
+    /// too many pieces.
+    fn cast(
+        &mut self,
+        region: &mut Region,
+        through_lid: bool,
+        part_hits: &[u32],
+        ahead: &[u32],
+        blockers: &[Blocker],
+    ) -> Option<()> {
+        if through_lid {
+            self.clip_to_lid(region);
+            if region.is_empty() {
+                return Some(());
+            }
+        }
+        if self.subtract_part_hulls(region, part_hits)? {
+            return Some(());
+        }
+        if self.subtract_parts_ahead(region, ahead)? {
+            return Some(());
+        }
+        self.subtract_blocker_faces(region, blockers)?;
+        Some(())
+    }
+
+    /// Cuts `region` to what of the face sees out of its own cap: the lid, projected back.
+    fn clip_to_lid(&mut self, region: &mut Region) {
+        let vis = self.vis;
+        let f = &vis.faces[self.face];
+        let lid = vis.parts[vis.part_of[self.face] as usize]
+            .convex
+            .lid
+            .as_ref()
+            .expect("caps have lids");
+        let (to_plane, x) = (self.to_plane, &mut *self.x);
+        x.shadow.clear();
+        let convex = f.convex();
+        if convex.is_empty() {
+            x.shadow
+                .extend(lid.corners.iter().map(|y| to_plane.project(*y).0));
+        } else {
+            // Clipped in the lid's plane: the face (convex) seen along d on the lid's
+            // plane, cut to the lid, and brought back. Only the few rim edges near it
+            // cut, where projecting the whole rim onto the face costs a pass over every
+            // corner and edge (measured: a tenth of the fine dish's epoch).
+            let d = self.d;
+            let mut poly = std::mem::take(&mut x.part_points);
+            poly.clear();
+            poly.extend(convex.iter().map(|p| lid.meet(*p, d)));
+            lid.clip(&mut poly, &mut x.lid_edges, &mut x.shadow);
+            x.shadow.clear();
+            x.shadow
+                .extend(poly.iter().map(|q| to_plane.project(lid.at(*q)).0));
+            x.part_points = poly;
+        }
+        region.intersect_convex(&x.shadow);
+    }
+
+    /// Subtracts the convex parts that shadow the face whole (indices into its
+    /// `part_shadows`): one hull each, from the part's silhouette — of the corners in
+    /// front of the plane and the edges' crossings with it when the plane cuts the part.
+    /// `Some(true)` once nothing is left of `region`; `None` at too many pieces.
+    fn subtract_part_hulls(&mut self, region: &mut Region, part_hits: &[u32]) -> Option<bool> {
+        let vis = self.vis;
+        let tol = vis.tol;
+        let f = &vis.faces[self.face];
+        let (to_plane, x) = (self.to_plane, &mut *self.x);
+        for &i in part_hits {
+            let ps = &f.part_shadows[i as usize];
+            let part = &vis.parts[ps.part as usize].convex;
+            let hull = vis.silhouette(self.silhouettes, ps.part, self.d);
+            x.shadow.clear();
+            if ps.cut {
+                x.part_points.clear();
+                for &j in hull.near(tol) {
+                    let (p, h) = to_plane.project(part.vertices[j as usize]);
+                    if h >= -tol {
+                        x.part_points.push(p);
+                    }
+                }
+                x.part_points
+                    .extend(ps.crossings.iter().map(|y| to_plane.project(*y).0));
+                convex_hull(&x.part_points, &mut x.hull_order, &mut x.shadow);
+            } else {
+                // the projection onto this plane is affine: the same corners, in order
+                x.shadow.extend(
+                    hull.corners
+                        .iter()
+                        .map(|&j| to_plane.project(part.vertices[j as usize]).0),
+                );
+            }
+            if subtract(region, &x.shadow)? {
+                return Some(true);
+            }
+        }
+        Some(false)
+    }
+
+    /// Subtracts the parts wholly ahead of the face: their silhouettes, projected onto its
+    /// plane. `Some(true)` once nothing is left of `region`; `None` at too many pieces.
+    fn subtract_parts_ahead(&mut self, region: &mut Region, ahead: &[u32]) -> Option<bool> {
+        let vis = self.vis;
+        let (to_plane, x) = (self.to_plane, &mut *self.x);
+        for &p in ahead {
+            let part = &vis.parts[p as usize].convex;
+            let hull = vis.silhouette(self.silhouettes, p, self.d);
+            x.shadow.clear();
+            x.shadow.extend(
+                hull.corners
+                    .iter()
+                    .map(|&j| to_plane.project(part.vertices[j as usize]).0),
+            );
+            if subtract(region, &x.shadow)? {
+                return Some(true);
+            }
+        }
+        Some(false)
+    }
+
+    /// Subtracts each blocker face's convex polygons, cut to their part in front of the
+    /// face's plane. `Some(true)` once nothing is left of `region`; `None` at too many
+    /// pieces.
+    fn subtract_blocker_faces(
+        &mut self,
+        region: &mut Region,
+        blockers: &[Blocker],
+    ) -> Option<bool> {
+        let vis = self.vis;
+        let (to_plane, x) = (self.to_plane, &mut *self.x);
+        for b in blockers {
+            let o = &vis.faces[b.face as usize];
+            for p in o.polygons() {
+                // project each vertex along d onto the plane; h is its height above it
+                x.clip_in.clear();
+                x.clip_in.extend(p.iter().map(|y| to_plane.project(*y)));
+                clip_above(&x.clip_in, vis.tol, &mut x.shadow);
+                if x.shadow.len() >= 3 && subtract(region, &x.shadow)? {
+                    return Some(true);
+                }
+            }
+        }
+        Some(false)
+    }
+}
+
+/// Subtracts a convex polygon from `region`: whether nothing is left of it, or `None` at
+/// too many pieces.
+#[inline]
+fn subtract(region: &mut Region, shadow: &[DVec2]) -> Option<bool> {
+    region.subtract_convex(shadow, MAX_PIECES).ok()?;
+    Some(region.is_empty())
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::oracle::*;
-    use super::super::{Cache, Uncertain};
+    use super::super::{Cache, FaceSide, Uncertain};
     use super::*;
     use crate::geometry::builtin;
 
@@ -291,7 +408,12 @@ mod tests {
                     .any(|p| !p.cut && (p.sides[0] || p.sides[1]))
             })
             .count();
-        let cap_blockers: usize = vis.lid_blockers.iter().flatten().map(Vec::len).sum();
+        let cap_blockers: usize = vis
+            .parts
+            .iter()
+            .flat_map(|p| &p.lid_blockers)
+            .map(Vec::len)
+            .sum();
         assert!(
             cut > 0 && whole > 0 && cap_blockers > 0,
             "{cut} {whole} {cap_blockers}"
@@ -305,9 +427,9 @@ mod tests {
             let (view, sun, earth) = (unit(), unit(), unit());
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
-                    if (side < 0.0 && !g.two_sided) || n.dot(view) <= 0.0 {
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
+                    if (side == FaceSide::Back && !g.two_sided) || n.dot(view) <= 0.0 {
                         continue;
                     }
                     let dirs = Uncertain {

@@ -61,11 +61,36 @@ pub(super) struct FaceGeom {
     pub(super) patch: u32,
 }
 
-/// Where side `side` (+1 front, −1 back) sits in a face's per-side arrays (`[_; 2]`):
-/// 0 front, 1 back.
-#[inline]
-pub(super) fn side_index(side: f64) -> usize {
-    usize::from(side < 0.0)
+/// Which side of a face is asked about: the one its normal points out of, or the other
+/// (a two-sided material's back). Not [`super::proofs::Side`], a patch's relation to a
+/// plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FaceSide {
+    Front,
+    Back,
+}
+
+impl FaceSide {
+    /// Both sides, front first.
+    pub const BOTH: [FaceSide; 2] = [FaceSide::Front, FaceSide::Back];
+
+    /// +1 front, −1 back: the side's normal is the face's times this.
+    #[inline]
+    pub fn sign(self) -> f64 {
+        match self {
+            FaceSide::Front => 1.0,
+            FaceSide::Back => -1.0,
+        }
+    }
+
+    /// Where the side sits in a face's per-side arrays (`[_; 2]`): 0 front, 1 back.
+    #[inline]
+    pub fn index(self) -> usize {
+        match self {
+            FaceSide::Front => 0,
+            FaceSide::Back => 1,
+        }
+    }
 }
 
 impl FaceGeom {

@@ -6,10 +6,10 @@
 use super::blockers::Blocker;
 use super::caps::{CapStates, LidState};
 use super::clip::{above_horizon, ShadowBuffers};
-use super::face::{side_index, FaceGeom};
+use super::direction::{PerDirection, Toward};
+use super::face::{FaceGeom, FaceSide};
 use super::settle::Settled;
 use super::{face_directions, Cache, Uncertain, Visibility, VisibilityMode, NO_PART};
-use super::{EARTH, SUN, VIEW};
 use crate::geometry::polygon::twice_signed_area;
 use glam::DVec3;
 
@@ -25,33 +25,37 @@ impl Visibility {
         earth: Option<DVec3>,
     ) -> Option<LidTable<'a>> {
         if !(self.mode == VisibilityMode::Adaptive && self.clip)
-            || self.cap_trees.iter().all(Option::is_none)
+            || self.parts.iter().all(|p| p.cap_tree.is_none())
         {
             return None;
         }
         let dirs = Uncertain { view, sun, earth };
-        for (k, d) in [Some(view), sun, earth].iter().enumerate() {
+        let directions = PerDirection {
+            view: Some(view),
+            sun,
+            earth,
+        };
+        for (k, d) in directions.pairs() {
             let Some(d) = *d else { continue };
             let states = &mut cache.cap_states[k];
             states.resize_with(self.parts.len(), Default::default);
-            for (cap, tree) in self.cap_trees.iter().enumerate() {
-                if let (Some(tree), Some(lid)) = (tree, &self.parts[cap].lid) {
+            for (cap, p) in self.parts.iter().enumerate() {
+                if let (Some(tree), Some(lid)) = (&p.cap_tree, &p.convex.lid) {
                     states[cap].along(tree, lid, d, self.tol);
                 }
             }
         }
-        let [v, s, e] = &cache.cap_states;
         Some(LidTable {
             vis: self,
             dirs,
-            states: [v, s, e],
+            states: cache.cap_states.each_ref().map(Vec::as_slice),
         })
     }
 
     /// Is `f` (on side `side`) a cap's inner face that nothing but its own cap can shadow?
     #[inline]
-    pub(super) fn lid_decides(&self, f: &FaceGeom, side: f64) -> bool {
-        self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[side_index(side)]
+    pub(super) fn lid_decides(&self, f: &FaceGeom, side: FaceSide) -> bool {
+        self.mode == VisibilityMode::Adaptive && self.clip && f.lid_only[side.index()]
     }
 
     /// [`Visibility::visible_area`] for a face (side normal `n`) that its own cap's lid
@@ -63,7 +67,7 @@ impl Visibility {
         cache: &mut Cache,
         face: usize,
         n: DVec3,
-        directions: &[Option<DVec3>; 3],
+        directions: &PerDirection<Option<DVec3>>,
     ) -> Option<(f64, f64)> {
         let f = &self.faces[face];
         let lids = self.own_lid_states(cache, face, directions);
@@ -73,15 +77,17 @@ impl Visibility {
         // Clipped along one direction only: the lid's cut, measured on the lid's plane.
         // (The rim's shadow and its occlusion cross a dish along different curves, so
         // a face on one seldom lies on the other.)
-        let mut clipped = (0..3).filter(|&k| lids[k] == LidState::Clip);
+        let mut clipped = Toward::ALL
+            .into_iter()
+            .filter(|&k| lids[k] == LidState::Clip);
         if let (Some(k), None) = (clipped.next(), clipped.next()) {
             let d = directions[k].expect("a clipped direction exists");
             if let Some(a) = self.area_through_lid(&mut cache.clip.shadows, face, n, d) {
                 let full = f.pieces_area;
                 let areas = match k {
-                    VIEW => (a, a), // seen part, and all of it lit (or none: `dark`)
-                    SUN => (a, full),
-                    _ => (full, a),
+                    Toward::View => (a, a), // seen part, and all of it lit (or none: `dark`)
+                    Toward::Sun => (a, full),
+                    Toward::Earth => (full, a),
                 };
                 return Some(dark(&lids, areas));
             }
@@ -89,7 +95,7 @@ impl Visibility {
         // clipped to the lid alone: no blockers to search for
         cache.part_hits.iter_mut().for_each(Vec::clear);
         cache.settled.iter_mut().for_each(Settled::clear);
-        let none: [Vec<Blocker>; 3] = Default::default();
+        let none: PerDirection<Vec<Blocker>> = Default::default();
         let open = open_directions(directions, &lids);
         self.exact_area(cache, face, n, &open, &none, &lids)
             .map(|areas| dark(&lids, areas))
@@ -103,10 +109,11 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        directions: &[Option<DVec3>; 3],
-    ) -> [LidState; 3] {
+        directions: &PerDirection<Option<DVec3>>,
+    ) -> PerDirection<LidState> {
         let cap = self.part_of[face];
         let lid = self.parts[cap as usize]
+            .convex
             .lid
             .as_ref()
             .expect("caps have lids");
@@ -129,7 +136,8 @@ impl Visibility {
         if states.len() < self.parts.len() {
             states.resize_with(self.parts.len(), Default::default);
         }
-        let tree = self.cap_trees[cap as usize]
+        let tree = self.parts[cap as usize]
+            .cap_tree
             .as_ref()
             .expect("caps have trees");
         states[cap as usize].along(tree, lid, d, self.tol)[self.cap_slot[face] as usize]
@@ -148,7 +156,10 @@ impl Visibility {
         d: DVec3,
     ) -> Option<f64> {
         let f = &self.faces[face];
-        let lid = self.parts[self.part_of[face] as usize].lid.as_ref()?;
+        let lid = self.parts[self.part_of[face] as usize]
+            .convex
+            .lid
+            .as_ref()?;
         let convex = f.convex();
         let d = above_horizon(d, n);
         let dl = d.dot(lid.normal);
@@ -169,7 +180,7 @@ pub struct LidTable<'a> {
     /// View, Sun, earthshine shadow direction, as the states were made for.
     dirs: Uncertain,
     /// Per direction, per part: its face states (a cap's), in tree order.
-    states: [&'a [CapStates]; 3],
+    states: PerDirection<&'a [CapStates]>,
 }
 
 impl LidTable<'_> {
@@ -182,7 +193,7 @@ impl LidTable<'_> {
     pub fn decided(
         &self,
         face: usize,
-        side: f64,
+        side: FaceSide,
         sunlit: bool,
         earthlit: bool,
     ) -> Option<(f64, f64)> {
@@ -197,7 +208,7 @@ impl LidTable<'_> {
             earth: self.dirs.earth.filter(|_| earthlit),
             ..self.dirs
         };
-        let directions = face_directions(&dirs, f.normal * side);
+        let directions = face_directions(&dirs, f.normal * side.sign());
         let lids = lid_states(&directions, |k, _| self.states[k][cap].states[slot]);
         lid_decided(&lids, f.pieces_area)
     }
@@ -207,14 +218,14 @@ impl LidTable<'_> {
 /// `Open` along one not asked for; once the view is closed, the rest is not looked up.
 #[inline]
 fn lid_states(
-    directions: &[Option<DVec3>; 3],
-    mut state: impl FnMut(usize, DVec3) -> LidState,
-) -> [LidState; 3] {
-    let mut lids = [LidState::Open; 3];
-    for (k, d) in directions.iter().enumerate() {
+    directions: &PerDirection<Option<DVec3>>,
+    mut state: impl FnMut(Toward, DVec3) -> LidState,
+) -> PerDirection<LidState> {
+    let mut lids = PerDirection::splat(LidState::Open);
+    for (k, d) in directions.pairs() {
         if let Some(d) = *d {
             lids[k] = state(k, d);
-            if k == VIEW && lids[VIEW] == LidState::Closed {
+            if k == Toward::View && lids.view == LidState::Closed {
                 break;
             }
         }
@@ -225,11 +236,11 @@ fn lid_states(
 /// The areas (m²) of a face of area `area` whose own lid has `lids` along view, Sun and
 /// Earth, when no state is `Clip`: all of it or nothing along each.
 #[inline]
-fn lid_decided(lids: &[LidState; 3], area: f64) -> Option<(f64, f64)> {
-    if lids[VIEW] == LidState::Closed {
+fn lid_decided(lids: &PerDirection<LidState>, area: f64) -> Option<(f64, f64)> {
+    if lids.view == LidState::Closed {
         return Some((0.0, 0.0));
     }
-    if lids.contains(&LidState::Clip) {
+    if lids.iter().any(|l| *l == LidState::Clip) {
         return None;
     }
     Some(dark(lids, (area, area)))
@@ -238,17 +249,17 @@ fn lid_decided(lids: &[LidState; 3], area: f64) -> Option<(f64, f64)> {
 /// The directions along which a face's own cap does not close it: along the others it is
 /// dark, with no shadows to cast.
 pub(super) fn open_directions(
-    directions: &[Option<DVec3>; 3],
-    lids: &[LidState; 3],
-) -> [Option<DVec3>; 3] {
-    [0, 1, 2].map(|k| directions[k].filter(|_| lids[k] != LidState::Closed))
+    directions: &PerDirection<Option<DVec3>>,
+    lids: &PerDirection<LidState>,
+) -> PerDirection<Option<DVec3>> {
+    PerDirection::from_fn(|k| directions[k].filter(|_| lids[k] != LidState::Closed))
 }
 
 /// Sunlit and earthlit areas (m²) zeroed where the face's own cap closes the Sun's or the
 /// Earth's direction.
-pub(super) fn dark(lids: &[LidState; 3], (a_sun, a_earth): (f64, f64)) -> (f64, f64) {
+pub(super) fn dark(lids: &PerDirection<LidState>, (a_sun, a_earth): (f64, f64)) -> (f64, f64) {
     let lit = |l: LidState, a: f64| if l == LidState::Closed { 0.0 } else { a };
-    (lit(lids[SUN], a_sun), lit(lids[EARTH], a_earth))
+    (lit(lids.sun, a_sun), lit(lids.earth, a_earth))
 }
 
 /// Marks each face whose lid alone decides what one side of it sees (`lid_only`).
@@ -293,9 +304,9 @@ mod tests {
             let (view, sun, earth) = (lift(unit()), lift(unit()), lift(unit()));
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
-                    if !g.lid_only[side_index(side)] || n.dot(view) <= 0.0 {
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
+                    if !g.lid_only[side.index()] || n.dot(view) <= 0.0 {
                         continue;
                     }
                     let dirs = Uncertain {
@@ -319,18 +330,21 @@ mod tests {
                     }
                     compared += 1;
                     let cap = vis.part_of[i];
-                    let lid = vis.parts[cap as usize].lid.as_ref().expect("lid");
+                    let lid = vis.parts[cap as usize].convex.lid.as_ref().expect("lid");
                     let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-                    let clipped = [Some(view), dirs.sun, earth]
-                        .iter()
-                        .enumerate()
-                        .filter(|(k, d)| {
-                            d.is_some_and(|d| {
-                                let states = &mut cache.cap_states[*k];
-                                vis.lid_state(states, lid, cap, i, d) == LidState::Clip
-                            })
+                    let clipped = PerDirection {
+                        view: Some(view),
+                        sun: dirs.sun,
+                        earth,
+                    }
+                    .pairs()
+                    .filter(|(k, d)| {
+                        d.is_some_and(|d| {
+                            let states = &mut cache.cap_states[*k];
+                            vis.lid_state(states, lid, cap, i, d) == LidState::Clip
                         })
-                        .count();
+                    })
+                    .count();
                     one_clipped += usize::from(clipped == 1);
                     partial += usize::from(clipped == 1 && b_sun > tol && b_sun < g.area - tol);
                 }
@@ -375,8 +389,8 @@ mod tests {
                 .expect("the dish is a cap");
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
                     if n.dot(view) <= 0.0 {
                         continue;
                     }
@@ -396,7 +410,7 @@ mod tests {
                     assert_eq!(
                         (a_sun.to_bits(), a_earth.to_bits()),
                         (b_sun.to_bits(), b_earth.to_bits()),
-                        "face {i} side {side}: {a_sun} {a_earth} against {b_sun} {b_earth}"
+                        "face {i} side {side:?}: {a_sun} {a_earth} against {b_sun} {b_earth}"
                     );
                     decided += 1;
                     closed_earth += usize::from(a_earth == 0.0 && a_sun > 0.0);

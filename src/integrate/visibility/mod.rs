@@ -50,13 +50,15 @@
 //!    hits (measured on the box-wing's dish, checked against f64 intersection).
 //!
 //! What the steps share is built once per request ([`Visibility::build`]): each face's
-//! geometry ([`face`]), the patches and which may block which, the convex parts with their
+//! geometry ([`face`], asked about on one [`FaceSide`] at a time), the patches and which may block which, the convex parts with their
 //! shadows, planes and normal cones, the caps' trees. The tests check each step against
-//! f64 rays and against plain face-by-face clipping (`oracle`, test builds only).
+//! f64 rays and against plain face-by-face clipping (`oracle`, test builds only). What a
+//! step holds or decides per direction (view, Sun, Earth) is a [`direction::PerDirection`].
 
 mod blockers;
 mod caps;
 mod clip;
+mod direction;
 mod face;
 mod grid;
 mod lids;
@@ -75,6 +77,8 @@ use crate::scene::Scene;
 use blockers::{Blocker, SearchScratch};
 use caps::{CapStates, CapTree, LidState};
 use clip::ClipScratch;
+use direction::{PerDirection, Toward};
+pub use face::FaceSide;
 use face::{face_geoms, triangle_area, FaceGeom};
 use glam::DVec3;
 pub use lids::LidTable;
@@ -106,12 +110,6 @@ pub struct Uncertain {
     pub earth: Option<DVec3>,
 }
 
-/// Where each direction sits in the per-direction arrays (`[_; 3]`, in the order of
-/// [`face_directions`]): towards the observer, the Sun, the Earth.
-const VIEW: usize = 0;
-const SUN: usize = 1;
-const EARTH: usize = 2;
-
 /// A face of no convex part (in [`Visibility::part_of`]).
 const NO_PART: u32 = u32::MAX;
 
@@ -129,31 +127,37 @@ pub struct Visibility {
     clip: bool,
     /// Cell size of the per-epoch face grids, m: the median face diameter.
     grid_cell: f64,
-    /// Connected convex pieces of the mesh (boxes, dishes): each casts its shadow on a
-    /// face wholly behind it as the hull of its projected vertices.
-    parts: Vec<ConvexPart>,
+    /// Connected convex pieces of the mesh (boxes, dishes), each with what the steps keep
+    /// of it: each casts its shadow on a face wholly behind it as the hull of its
+    /// projected vertices.
+    parts: Vec<PartEntry>,
     /// Each face's convex part (index into `parts`; `NO_PART` for none).
     part_of: Vec<u32>,
-    /// Each part's bounding sphere (centre, radius), m.
-    part_spheres: Vec<(DVec3, f64)>,
-    /// Each part's bounding box as its 8 corners, m ([`Visibility::part_cover`]).
-    part_boxes: Vec<[DVec3; 8]>,
     /// Faces of no part (a lone plate).
     loose: Vec<u32>,
-    /// Per part: planes its hull lies behind ([`parts::hull_planes`]); `None` for a part
-    /// that cannot hide a face whole.
-    part_planes: Vec<Option<Vec<(DVec3, f64)>>>,
-    /// Per part, per vertex: the cone of its faces' outward normals
-    /// ([`parts::normal_cones`]).
-    part_cones: Vec<Vec<[f64; 4]>>,
-    /// Per cap: the faces a ray leaving it from inside can meet ([`parts::lid_blockers`]).
-    lid_blockers: Vec<Option<Vec<u32>>>,
     /// Per patch: its faces grouped by part.
     patch_parts: PatchParts,
-    /// Per part: for a cap, its faces in a ball tree ([`caps`]).
-    cap_trees: Vec<Option<CapTree>>,
     /// Per face of a cap: its place in the cap's tree order.
     cap_slot: Vec<u32>,
+}
+
+/// One convex part and what the steps keep of it (an entry of `Visibility::parts`).
+struct PartEntry {
+    convex: ConvexPart,
+    /// Bounding sphere (centre, radius), m.
+    sphere: (DVec3, f64),
+    /// Bounding box as its 8 corners, m ([`Visibility::part_cover`]).
+    corners: [DVec3; 8],
+    /// Planes its hull lies behind ([`parts::hull_planes`]); `None` for a part that cannot
+    /// hide a face whole.
+    planes: Option<Vec<(DVec3, f64)>>,
+    /// Per vertex: the cone of its faces' outward normals ([`parts::normal_cones`]).
+    cones: Vec<[f64; 4]>,
+    /// For a cap: the faces a ray leaving it from inside can meet
+    /// ([`parts::lid_blockers`]).
+    lid_blockers: Option<Vec<u32>>,
+    /// For a cap: its faces in a ball tree ([`caps`]).
+    cap_tree: Option<CapTree>,
 }
 
 /// Per-thread scratch, and what one step hands the next for the face at hand. Each step
@@ -163,20 +167,20 @@ pub struct Cache {
     /// The blocker search's ([`Visibility::collect_blockers`]).
     search: SearchScratch,
     /// Per direction: what the face's cover candidates settle ([`Visibility::settle_by_parts`]).
-    settled: [Settled; 3],
+    settled: PerDirection<Settled>,
     /// Buffers for [`Visibility::settle_by_parts`].
     settle: SettleScratch,
     /// Per direction: the parts that may shadow the current face whole (indices into
     /// its `part_shadows`), from [`Visibility::collect_blockers`].
-    part_hits: [Vec<u32>; 3],
+    part_hits: PerDirection<Vec<u32>>,
     /// Per direction, per part: its silhouette this epoch.
-    silhouettes: [Vec<Silhouette>; 3],
+    silhouettes: PerDirection<Vec<Silhouette>>,
     /// Buffers for [`Visibility::exact_area`].
     clip: ClipScratch,
     /// Per direction, per part: a cap's face states along it (built on first use).
-    cap_states: [Vec<CapStates>; 3],
+    cap_states: PerDirection<Vec<CapStates>>,
     /// Buffers for a face's possible blockers per direction (see [`Sampler`]).
-    blockers: [Vec<Blocker>; 3],
+    blockers: PerDirection<Vec<Blocker>>,
 }
 
 impl Cache {
@@ -269,18 +273,21 @@ impl Visibility {
         let loose = (0..geoms.len() as u32)
             .filter(|&g| part_of[g as usize] == NO_PART)
             .collect();
+        let parts = part_table(
+            parts,
+            part_spheres,
+            part_boxes,
+            part_planes,
+            part_cones,
+            lid_blockers,
+            cap_trees,
+        );
         Visibility {
             mode,
             occluder,
             part_of,
-            part_spheres,
-            part_boxes,
             loose,
-            part_planes,
-            part_cones,
-            lid_blockers,
             patch_parts,
-            cap_trees,
             cap_slot,
             faces: geoms,
             patches,
@@ -293,18 +300,18 @@ impl Visibility {
     }
 
     /// Area of `face` (m²) that is both seen and sunlit, and both seen and earthlit, on
-    /// side `side` (+1 front, −1 back); plus the number of rays cast. `budget` (m²) is the
+    /// side `side`; plus the number of rays cast. `budget` (m²) is the
     /// area of this face whose misclassification the tolerance allows.
     pub fn visible_area(
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
+        side: FaceSide,
         dirs: &Uncertain,
         budget: f64,
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
-        let n = f.normal * side;
+        let n = f.normal * side.sign();
         let directions = face_directions(dirs, n);
         if self.lid_decides(f, side) {
             if let Some((a_sun, a_earth)) = self.through_own_lid(cache, face, n, &directions) {
@@ -322,14 +329,19 @@ impl Visibility {
         // else lies there: no blockers to search or clip (a dish's back behind the bus).
         // Along one that nothing can shadow it from, it is lit (or seen) whole.
         cache.settled.iter_mut().for_each(Settled::clear);
-        let [hidden, clear] = self.settle_by_parts(cache, face, side, &directions);
-        if hidden[VIEW] {
+        let (hidden, clear) = self.settle_by_parts(cache, face, side, &directions);
+        if hidden.view {
             return (0.0, 0.0, 0);
         }
-        let lit = |k: usize, a: f64| if hidden[k] { 0.0 } else { a };
-        let directions = [0, 1, 2].map(|k| directions[k].filter(|_| !hidden[k] && !clear[k]));
+        let lit = |k: Toward, a: f64| if hidden[k] { 0.0 } else { a };
+        let directions =
+            PerDirection::from_fn(|k| directions[k].filter(|_| !hidden[k] && !clear[k]));
         if directions.iter().all(Option::is_none) {
-            return (lit(SUN, f.pieces_area), lit(EARTH, f.pieces_area), 0);
+            return (
+                lit(Toward::Sun, f.pieces_area),
+                lit(Toward::Earth, f.pieces_area),
+                0,
+            );
         }
         // the blocker lists' buffers are the cache's, kept from face to face
         let mut blockers = std::mem::take(&mut cache.blockers);
@@ -345,7 +357,7 @@ impl Visibility {
         );
         let (a_sun, a_earth, rays) = self.shadowed_area(cache, face, side, &directions, &mut s);
         cache.blockers = std::mem::take(&mut s.blockers);
-        (lit(SUN, a_sun), lit(EARTH, a_earth), rays)
+        (lit(Toward::Sun, a_sun), lit(Toward::Earth, a_earth), rays)
     }
 
     /// [`Visibility::visible_area`] for a face that its own cap's lid does not decide
@@ -354,17 +366,17 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
-        directions: &[Option<DVec3>; 3],
+        side: FaceSide,
+        directions: &PerDirection<Option<DVec3>>,
         s: &mut Sampler,
     ) -> (f64, f64, u64) {
         let f = &self.faces[face];
-        let n = f.normal * side;
+        let n = f.normal * side.sign();
         if self.mode == VisibilityMode::Centroid {
             return s.centroids(&f.pieces);
         }
         let lids = self.collect_blockers(cache, face, side, directions, true, &mut s.blockers);
-        if lids[VIEW] == LidState::Closed {
+        if lids.view == LidState::Closed {
             return (0.0, 0.0, 0); // the face's own cap hides it
         }
         let open = open_directions(directions, &lids);
@@ -393,11 +405,49 @@ impl Visibility {
     }
 }
 
+/// The parts' entries from what [`Visibility::build`] made of them one list at a time.
+fn part_table(
+    parts: Vec<ConvexPart>,
+    spheres: Vec<(DVec3, f64)>,
+    boxes: Vec<[DVec3; 8]>,
+    planes: Vec<Option<Vec<(DVec3, f64)>>>,
+    cones: Vec<Vec<[f64; 4]>>,
+    lid_blockers: Vec<Option<Vec<u32>>>,
+    cap_trees: Vec<Option<CapTree>>,
+) -> Vec<PartEntry> {
+    parts
+        .into_iter()
+        .zip(spheres)
+        .zip(boxes)
+        .zip(planes)
+        .zip(cones)
+        .zip(lid_blockers)
+        .zip(cap_trees)
+        .map(
+            |((((((convex, sphere), corners), planes), cones), lid_blockers), cap_tree)| {
+                PartEntry {
+                    convex,
+                    sphere,
+                    corners,
+                    planes,
+                    cones,
+                    lid_blockers,
+                    cap_tree,
+                }
+            },
+        )
+        .collect()
+}
+
 /// View, Sun and earthshine directions that matter for a face of side normal `n`.
 /// Earthshine's representative direction may lie below the face while parts of the Earth
 /// light it: no meaningful ray then; it counts as unshadowed.
 #[inline]
-fn face_directions(dirs: &Uncertain, n: DVec3) -> [Option<DVec3>; 3] {
+fn face_directions(dirs: &Uncertain, n: DVec3) -> PerDirection<Option<DVec3>> {
     let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-    [Some(dirs.view), dirs.sun, earth]
+    PerDirection {
+        view: Some(dirs.view),
+        sun: dirs.sun,
+        earth,
+    }
 }

@@ -13,16 +13,20 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
+        side: FaceSide,
         dirs: &Uncertain,
     ) -> Option<(f64, f64)> {
-        let n = self.faces[face].normal * side;
+        let n = self.faces[face].normal * side.sign();
         let earth = dirs.earth.filter(|e| n.dot(*e) > 1e-3);
-        let directions = [Some(dirs.view), dirs.sun, earth];
-        let mut blockers: [Vec<Blocker>; 3] = Default::default();
+        let directions = PerDirection {
+            view: Some(dirs.view),
+            sun: dirs.sun,
+            earth,
+        };
+        let mut blockers: PerDirection<Vec<Blocker>> = Default::default();
         cache.settled.iter_mut().for_each(Settled::clear);
         self.collect_blockers(cache, face, side, &directions, false, &mut blockers);
-        let open = [LidState::Open; 3];
+        let open = PerDirection::splat(LidState::Open);
         self.exact_area(cache, face, n, &directions, &blockers, &open)
     }
 }
@@ -97,9 +101,9 @@ pub(super) fn plate_lit(vis: &Visibility, plate: usize, sun: DVec3) -> (f64, f64
     };
     let mut cache = Cache::default();
     cache.reset();
-    let (a, _, rays) = vis.visible_area(&mut cache, plate, 1.0, &dirs, 1e-6);
+    let (a, _, rays) = vis.visible_area(&mut cache, plate, FaceSide::Front, &dirs, 1e-6);
     let (b, _) = vis
-        .face_by_face(&mut cache, plate, 1.0, &dirs)
+        .face_by_face(&mut cache, plate, FaceSide::Front, &dirs)
         .expect("clipped");
     assert_eq!(rays, 0);
     (a, b)
@@ -136,7 +140,7 @@ pub(super) fn random_unit(rnd: &mut impl FnMut() -> f64) -> DVec3 {
 pub(super) fn rays_decide(
     vis: &Visibility,
     i: usize,
-    side: f64,
+    side: FaceSide,
     dirs: &Uncertain,
     (a_sun, a_earth): (f64, f64),
     (b_sun, b_earth): (f64, f64),
@@ -149,7 +153,7 @@ pub(super) fn rays_decide(
     };
     assert!(
         (a_sun - r_sun).abs() <= sigma(r_sun) && (a_earth - r_earth).abs() <= sigma(r_earth),
-        "face {i} side {side}: engine {a_sun}, {a_earth}; face by face {b_sun}, {b_earth}; \
+        "face {i} side {side:?}: engine {a_sun}, {a_earth}; face by face {b_sun}, {b_earth}; \
          rays {r_sun}, {r_earth}"
     );
 }
@@ -159,12 +163,12 @@ pub(super) fn rays_decide(
 pub(super) fn sampled(
     vis: &Visibility,
     face: usize,
-    side: f64,
+    side: FaceSide,
     dirs: &Uncertain,
     n: usize,
 ) -> (f64, f64) {
     let g = &vis.faces[face];
-    let normal = g.normal * side;
+    let normal = g.normal * side.sign();
     let earth = dirs.earth.filter(|e| normal.dot(*e) > 1e-3);
     let total = g.pieces_area;
     let mut rnd = crate::test_rng(17 + face as u64);

@@ -285,7 +285,8 @@ mod tests {
         // light curves) stay the same to the last bit.
         for mesh in [builtin::box_wing_with(8, 24, 0), cluttered_box_wing()] {
             let vis = visibility_of(mesh);
-            let within = PatchWithinPart::new(&vis.patches, &vis.parts, vis.faces.len());
+            let parts: Vec<ConvexPart> = vis.parts.iter().map(|p| p.convex.clone()).collect();
+            let within = PatchWithinPart::new(&vis.patches, &parts, vis.faces.len());
             let mut shortcut = 0;
             for q in 0..vis.patches.len() {
                 let points = patch_points(&vis.faces, &vis.patches[q]);

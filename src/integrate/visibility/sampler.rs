@@ -1,9 +1,9 @@
 //! Adaptive ray sampling of a face's visible area, where exact clipping cannot decide.
 
 use super::blockers::Blocker;
+use super::direction::{PerDirection, Toward};
 use super::face::triangle_area;
 use super::proofs::reaches;
-use super::{EARTH, SUN, VIEW};
 use crate::geometry::bvh::LazyOccluder;
 use glam::DVec3;
 
@@ -17,9 +17,9 @@ pub(super) struct Sampler<'a> {
     /// Face centroid: samples are nudged towards it (see [`Sampler::eval`]).
     centre: DVec3,
     /// View, sun and earthshine directions (sun/earth absent when they do not light the face).
-    dirs: [Option<DVec3>; 3],
+    dirs: PerDirection<Option<DVec3>>,
     /// Possible blockers per direction; an empty list means the direction is clear.
-    pub(super) blockers: [Vec<Blocker>; 3],
+    pub(super) blockers: PerDirection<Vec<Blocker>>,
     /// Leaf diameter (m) below which refinement stops.
     min_size: f64,
     /// Area of the face (m²) whose misclassification the tolerance allows.
@@ -34,10 +34,10 @@ impl<'a> Sampler<'a> {
         occluder: &'a LazyOccluder,
         n: DVec3,
         centre: DVec3,
-        dirs: [Option<DVec3>; 3],
+        dirs: PerDirection<Option<DVec3>>,
         min_size: f64,
         budget: f64,
-        blockers: [Vec<Blocker>; 3],
+        blockers: PerDirection<Vec<Blocker>>,
     ) -> Self {
         Sampler {
             occluder,
@@ -56,7 +56,7 @@ impl<'a> Sampler<'a> {
     /// Bit 0: seen and sunlit; bit 1: seen and earthlit (or earthshine unshadowed).
     /// Rays are cast only for the directions in `check`.
     #[inline]
-    fn eval(&mut self, p: DVec3, check: [bool; 3]) -> u8 {
+    fn eval(&mut self, p: DVec3, check: PerDirection<bool>) -> u8 {
         // A sample on the face's edge may lie in the plane of a neighbour that shares the
         // edge; a ray from there would hit that neighbour at t ≈ 0. Nudge it into the face
         // by the ray offset (scaled to the object) so edges see what the face's interior sees.
@@ -67,18 +67,18 @@ impl<'a> Sampler<'a> {
         } else {
             p
         };
-        let mut clear = [true; 3];
-        for (k, (&c, d)) in check.iter().zip(self.dirs).enumerate() {
+        let mut clear = PerDirection::splat(true);
+        for (k, &(c, d)) in check.zip(self.dirs).pairs() {
             if let (true, Some(d)) = (c, d) {
                 self.rays += 1;
                 clear[k] = self.occluder.get().is_clear(p, self.n, d);
-                if k == VIEW && !clear[VIEW] {
+                if k == Toward::View && !clear.view {
                     return 0; // hidden from the observer: nothing else matters
                 }
             }
         }
-        let sun = self.dirs[SUN].is_some() && clear[SUN];
-        (sun as u8) | ((clear[EARTH] as u8) << 1)
+        let sun = self.dirs.sun.is_some() && clear.sun;
+        (sun as u8) | ((clear.earth as u8) << 1)
     }
 
     /// The centroid method: one ray per direction at each of `pieces`' centroids, which
@@ -86,7 +86,7 @@ impl<'a> Sampler<'a> {
     /// the rays cast.
     pub(super) fn centroids(&mut self, pieces: &[[DVec3; 3]]) -> (f64, f64, u64) {
         for c in pieces {
-            let bits = self.eval((c[0] + c[1] + c[2]) / 3.0, [true; 3]);
+            let bits = self.eval((c[0] + c[1] + c[2]) / 3.0, PerDirection::splat(true));
             let a = triangle_area(c);
             self.a_sun += a * (bits & 1) as f64;
             self.a_earth += a * ((bits >> 1) & 1) as f64;
@@ -108,9 +108,14 @@ impl<'a> Sampler<'a> {
         let radius = p.iter().map(|q| q.distance(m)).fold(0.0, f64::max);
         // Which directions still have a blocker that can reach this piece, and the
         // narrowest shadow such a blocker can cast.
-        let mut check = [false; 3];
+        let mut check = PerDirection::splat(false);
         let mut feature = f64::INFINITY;
-        for ((needed, dir), blockers) in check.iter_mut().zip(self.dirs).zip(&self.blockers) {
+        for ((needed, dir), blockers) in check
+            .iter_mut()
+            .zip(self.dirs.iter())
+            .zip(self.blockers.iter())
+        {
+            let dir = *dir;
             let Some(d) = dir else { continue };
             for b in blockers {
                 if reaches(m, radius, b.centre, b.radius, d) && !b.half_space_clear(d, &p, tol) {
@@ -122,9 +127,9 @@ impl<'a> Sampler<'a> {
                 }
             }
         }
-        if check == [false; 3] {
+        if check == PerDirection::splat(false) {
             // proven clear: seen, and lit by whatever lights the face
-            self.a_sun += if self.dirs[SUN].is_some() { area } else { 0.0 };
+            self.a_sun += if self.dirs.sun.is_some() { area } else { 0.0 };
             self.a_earth += area;
             return;
         }

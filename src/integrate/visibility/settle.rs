@@ -5,10 +5,11 @@
 //! face's whole part first ([`Visibility::part_cover`]), then against the face.
 
 use super::clip::above_horizon;
-use super::face::side_index;
+use super::direction::{PerDirection, Toward};
+use super::face::{FaceGeom, FaceSide};
 use super::parts::{self, Cover, PartCover, Silhouette};
 use super::proofs::reaches;
-use super::{Cache, Visibility, NO_PART, VIEW};
+use super::{Cache, Visibility, NO_PART};
 use glam::{DVec2, DVec3};
 
 /// What the parts that may hide a face whole settle along one direction.
@@ -42,14 +43,14 @@ const MAX_LOOSE: usize = 8;
 #[derive(Default)]
 pub(super) struct SettleScratch {
     /// Per direction, per part: the other parts' cover test against it whole.
-    part_covers: [Vec<PartCover>; 3],
+    part_covers: PerDirection<Vec<PartCover>>,
     /// The face's vertices projected across the direction being settled.
     across: Vec<DVec2>,
 }
 
 impl Visibility {
     /// Per direction: is `face` (on side `side`) hidden whole along it by one convex part
-    /// (first array), or can nothing shadow it along it (second)? What else its cover
+    /// (first), or can nothing shadow it along it (second)? What else its cover
     /// candidates settle goes to `cache.settled` ([`parts::Silhouette::cover`]).
     /// Parts are tested first against the face's whole part ([`Visibility::part_cover`]),
     /// then against the face.
@@ -57,25 +58,23 @@ impl Visibility {
         &self,
         cache: &mut Cache,
         face: usize,
-        side: f64,
-        directions: &[Option<DVec3>; 3],
-    ) -> [[bool; 3]; 2] {
+        side: FaceSide,
+        directions: &PerDirection<Option<DVec3>>,
+    ) -> (PerDirection<bool>, PerDirection<bool>) {
         let f = &self.faces[face];
-        let side_index = side_index(side);
-        let n = f.normal * side;
+        let side_index = side.index();
+        let n = f.normal * side.sign();
         let covers = &f.covers[side_index];
-        let (mut hidden, mut clear) = ([false; 3], [false; 3]);
+        let (mut hidden, mut clear) = (PerDirection::splat(false), PerDirection::splat(false));
         if covers.is_empty() || f.vertices.is_empty() {
-            return [hidden, clear];
+            return (hidden, clear);
         }
-        // beyond the convexity proof's tolerance, which the hull may stand out by
-        let margin = 2.0 * self.tol;
         let own = self.part_of[face];
         // the face's part as a whole is tested only for parts of many faces, where it
         // saves many faces' tests; and nothing but other parts (and loose faces) can shadow
         // a face that faces out of its own convex part
         let whole_part = own != NO_PART
-            && self.parts[own as usize].faces.len() >= PART_COVER_MIN_FACES
+            && self.parts[own as usize].convex.faces.len() >= PART_COVER_MIN_FACES
             && self.parts.len() <= 64;
         let others = if whole_part && f.own_outside[side_index] {
             (u64::MAX >> (64 - self.parts.len())) & !(1u64 << own)
@@ -83,7 +82,7 @@ impl Visibility {
             u64::MAX // never all settled: no direction is called clear
         };
         let x = &mut cache.settle;
-        for (k, d) in directions.iter().enumerate() {
+        for (k, d) in directions.pairs() {
             let Some(d) = *d else { continue };
             // the direction the shadows are cast along (`exact_area`'s)
             let cast = above_horizon(d, n);
@@ -92,17 +91,10 @@ impl Visibility {
             let (silhouettes, settled) = (&mut cache.silhouettes[k], &mut cache.settled[k]);
             // (a face whose horizon bends the direction has its own: no part's result)
             if whole_part && cast == d {
-                let covers = &mut x.part_covers[k];
-                if covers.len() < self.parts.len() {
-                    covers.resize_with(self.parts.len(), Default::default);
-                }
-                let whole = &mut covers[own as usize];
-                if whole.dir != Some(d) {
-                    *whole = self.part_cover(silhouettes, own as usize, d);
-                }
+                let whole = self.own_part_cover(&mut x.part_covers[k], silhouettes, own, d);
                 if whole.hidden {
                     hidden[k] = true;
-                    if k == VIEW {
+                    if k == Toward::View {
                         break; // unseen: nothing else matters
                     }
                     continue;
@@ -110,45 +102,8 @@ impl Visibility {
                 settled.miss |= whole.miss;
             }
             let d = cast;
-            for &part in covers {
-                let bit = if part < 64 { 1u64 << part } else { 0 };
-                if settled.miss & bit != 0 {
-                    continue; // settled for the whole part
-                }
-                let p = part as usize;
-                let sphere = self.part_spheres[p];
-                if !reaches(f.centroid, f.radius, sphere.0, sphere.1, d) {
-                    settled.miss |= bit;
-                    continue;
-                }
-                let Some(planes) = &self.part_planes[p] else {
-                    continue;
-                };
-                let Some(ahead) = (parts::Planes { planes, sphere }).settle(&f.vertices, d, margin)
-                else {
-                    settled.miss |= bit;
-                    continue;
-                };
-                if x.across.is_empty() {
-                    let (u, w) = Silhouette::axes(d);
-                    x.across
-                        .extend(f.vertices.iter().map(|p| DVec2::new(p.dot(u), p.dot(w))));
-                }
-                let hull = self.silhouette(silhouettes, part, d);
-                match hull.cover(ahead, &x.across, margin) {
-                    Cover::Hidden => {
-                        hidden[k] = true;
-                        break;
-                    }
-                    Cover::Miss => settled.miss |= bit,
-                    Cover::Ahead if bit != 0 => {
-                        settled.ahead.push(part);
-                        settled.ahead_bits |= bit;
-                    }
-                    Cover::Ahead | Cover::Unknown => {}
-                }
-            }
-            if k == VIEW && hidden[VIEW] {
+            hidden[k] = self.settle_by_covers(f, covers, d, silhouettes, settled, &mut x.across);
+            if k == Toward::View && hidden.view {
                 break; // unseen: nothing else matters
             }
             clear[k] = !hidden[k]
@@ -159,23 +114,96 @@ impl Visibility {
                     .iter()
                     .all(|&g| !self.may_block(face, n, g as usize, d));
         }
-        [hidden, clear]
+        (hidden, clear)
+    }
+
+    /// The cover test of every other part against `face`'s own part `own` as a whole
+    /// along unit `d` ([`Visibility::part_cover`]), kept in `covers` (the direction's,
+    /// per part) until the direction changes.
+    fn own_part_cover<'c>(
+        &self,
+        covers: &'c mut Vec<PartCover>,
+        silhouettes: &mut Vec<Silhouette>,
+        own: u32,
+        d: DVec3,
+    ) -> &'c PartCover {
+        if covers.len() < self.parts.len() {
+            covers.resize_with(self.parts.len(), Default::default);
+        }
+        let whole = &mut covers[own as usize];
+        if whole.dir != Some(d) {
+            *whole = self.part_cover(silhouettes, own as usize, d);
+        }
+        whole
+    }
+
+    /// The cover test of face `f`'s candidate parts `covers` along `d` (the direction the
+    /// shadows are cast along): whether one hides it whole; the parts it misses, and
+    /// those wholly ahead of it, go to `settled`. `across`: the face's corners projected
+    /// across `d`, filled on first use (empty on entry).
+    fn settle_by_covers(
+        &self,
+        f: &FaceGeom,
+        covers: &[u32],
+        d: DVec3,
+        silhouettes: &mut Vec<Silhouette>,
+        settled: &mut Settled,
+        across: &mut Vec<DVec2>,
+    ) -> bool {
+        // beyond the convexity proof's tolerance, which the hull may stand out by
+        let margin = 2.0 * self.tol;
+        for &part in covers {
+            let bit = if part < 64 { 1u64 << part } else { 0 };
+            if settled.miss & bit != 0 {
+                continue; // settled for the whole part
+            }
+            let p = part as usize;
+            let sphere = self.parts[p].sphere;
+            if !reaches(f.centroid, f.radius, sphere.0, sphere.1, d) {
+                settled.miss |= bit;
+                continue;
+            }
+            let Some(planes) = &self.parts[p].planes else {
+                continue;
+            };
+            let Some(ahead) = (parts::Planes { planes, sphere }).settle(&f.vertices, d, margin)
+            else {
+                settled.miss |= bit;
+                continue;
+            };
+            if across.is_empty() {
+                let (u, w) = Silhouette::axes(d);
+                across.extend(f.vertices.iter().map(|p| DVec2::new(p.dot(u), p.dot(w))));
+            }
+            let hull = self.silhouette(silhouettes, part, d);
+            match hull.cover(ahead, across, margin) {
+                Cover::Hidden => return true,
+                Cover::Miss => settled.miss |= bit,
+                Cover::Ahead if bit != 0 => {
+                    settled.ahead.push(part);
+                    settled.ahead_bits |= bit;
+                }
+                Cover::Ahead | Cover::Unknown => {}
+            }
+        }
+        false
     }
 
     /// The cover test of every other part against part `p` as a whole along unit `d`
     /// ([`parts::PartCover`]): against the convex hull of the corners of `p`'s bounding
     /// box, which holds every face of `p`, so what holds for it holds for each of them.
     fn part_cover(&self, silhouettes: &mut Vec<Silhouette>, p: usize, d: DVec3) -> PartCover {
-        let corners = &self.part_boxes[p];
+        let corners = &self.parts[p].corners;
         let (u, w) = Silhouette::axes(d);
         let across = corners.map(|c| DVec2::new(c.dot(u), c.dot(w)));
         let margin = 2.0 * self.tol;
-        let (centre, radius) = self.part_spheres[p];
+        let (centre, radius) = self.parts[p].sphere;
         let mut out = PartCover {
             dir: Some(d),
             ..PartCover::default()
         };
-        for (q, &sphere) in self.part_spheres.iter().enumerate().take(64) {
+        for (q, other) in self.parts.iter().enumerate().take(64) {
+            let sphere = other.sphere;
             let bit = 1u64 << q;
             if q == p {
                 continue;
@@ -184,7 +212,7 @@ impl Visibility {
                 out.miss |= bit;
                 continue;
             }
-            let Some(planes) = &self.part_planes[q] else {
+            let Some(planes) = &other.planes else {
                 continue;
             };
             let Some(ahead) = (parts::Planes { planes, sphere }).settle(corners, d, margin) else {
@@ -219,7 +247,8 @@ impl Visibility {
         }
         let p = part as usize;
         let hull = &mut silhouettes[p];
-        hull.along(&self.parts[p], &self.part_cones[p], d, self.tol);
+        let entry = &self.parts[p];
+        hull.along(&entry.convex, &entry.cones, d, self.tol);
         hull
     }
 }
@@ -249,7 +278,7 @@ mod tests {
                 .any(|(j, o)| j != face && o.pieces.iter().any(|t| ray_meets_triangle(p, d, t)))
         };
         let hits = |part: u32, p: DVec3, d: DVec3| {
-            vis.parts[part as usize].faces.iter().any(|&f| {
+            vis.parts[part as usize].convex.faces.iter().any(|&f| {
                 vis.faces[f as usize]
                     .pieces
                     .iter()
@@ -268,14 +297,18 @@ mod tests {
             };
             cache.reset();
             for (i, g) in vis.faces.iter().enumerate() {
-                for side in [1.0, -1.0] {
-                    let n = g.normal * side;
-                    if (side < 0.0 && !g.two_sided) || n.dot(view) <= 0.0 {
+                for side in FaceSide::BOTH {
+                    let n = g.normal * side.sign();
+                    if (side == FaceSide::Back && !g.two_sided) || n.dot(view) <= 0.0 {
                         continue;
                     }
-                    let dirs = [Some(view), (n.dot(sun) > 0.0).then_some(sun), None];
+                    let dirs = PerDirection {
+                        view: Some(view),
+                        sun: (n.dot(sun) > 0.0).then_some(sun),
+                        earth: None,
+                    };
                     cache.settled.iter_mut().for_each(Settled::clear);
-                    let [dark, unshadowed] = vis.settle_by_parts(&mut cache, i, side, &dirs);
+                    let (dark, unshadowed) = vis.settle_by_parts(&mut cache, i, side, &dirs);
                     let points: Vec<DVec3> = (0..64)
                         .map(|_| {
                             let t = g.pieces[(rnd() * g.pieces.len() as f64) as usize];
@@ -286,7 +319,7 @@ mod tests {
                             t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b
                         })
                         .collect();
-                    for k in 0..2 {
+                    for k in [Toward::View, Toward::Sun] {
                         let Some(d) = dirs[k] else { continue };
                         let d = above_horizon(d, n);
                         if dark[k] {

@@ -1,0 +1,123 @@
+//! The three directions a face is asked about in an epoch — towards the observer, the Sun
+//! and the Earth — and a value for each ([`PerDirection`]).
+
+use std::ops::{Index, IndexMut};
+
+/// One of the directions a face is asked about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Toward {
+    View,
+    Sun,
+    Earth,
+}
+
+impl Toward {
+    /// Every direction, in the order [`PerDirection`] holds and visits them.
+    pub(super) const ALL: [Toward; 3] = [Toward::View, Toward::Sun, Toward::Earth];
+}
+
+/// A value per direction. Iteration and [`PerDirection::map`] visit view, Sun, Earth in
+/// that order (the order the steps were written for: the view first, since a face
+/// unseen needs nothing else).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(super) struct PerDirection<T> {
+    pub(super) view: T,
+    pub(super) sun: T,
+    pub(super) earth: T,
+}
+
+impl<T> PerDirection<T> {
+    /// The same value along every direction.
+    pub(super) fn splat(value: T) -> Self
+    where
+        T: Clone,
+    {
+        PerDirection {
+            view: value.clone(),
+            sun: value.clone(),
+            earth: value,
+        }
+    }
+
+    /// A value per direction from `f`, called for view, Sun, Earth in that order.
+    pub(super) fn from_fn(mut f: impl FnMut(Toward) -> T) -> Self {
+        let view = f(Toward::View);
+        let sun = f(Toward::Sun);
+        let earth = f(Toward::Earth);
+        PerDirection { view, sun, earth }
+    }
+
+    /// `f` of each value, called for view, Sun, Earth in that order.
+    pub(super) fn map<U>(self, mut f: impl FnMut(T) -> U) -> PerDirection<U> {
+        let view = f(self.view);
+        let sun = f(self.sun);
+        let earth = f(self.earth);
+        PerDirection { view, sun, earth }
+    }
+
+    /// A reference to each value.
+    pub(super) fn each_ref(&self) -> PerDirection<&T> {
+        PerDirection {
+            view: &self.view,
+            sun: &self.sun,
+            earth: &self.earth,
+        }
+    }
+
+    /// A mutable reference to each value.
+    pub(super) fn each_mut(&mut self) -> PerDirection<&mut T> {
+        PerDirection {
+            view: &mut self.view,
+            sun: &mut self.sun,
+            earth: &mut self.earth,
+        }
+    }
+
+    /// The values paired with `other`'s, direction by direction.
+    pub(super) fn zip<U>(self, other: PerDirection<U>) -> PerDirection<(T, U)> {
+        PerDirection {
+            view: (self.view, other.view),
+            sun: (self.sun, other.sun),
+            earth: (self.earth, other.earth),
+        }
+    }
+
+    /// The values, view first.
+    pub(super) fn iter(&self) -> std::array::IntoIter<&T, 3> {
+        [&self.view, &self.sun, &self.earth].into_iter()
+    }
+
+    /// The values, view first.
+    pub(super) fn iter_mut(&mut self) -> std::array::IntoIter<&mut T, 3> {
+        [&mut self.view, &mut self.sun, &mut self.earth].into_iter()
+    }
+
+    /// Each direction with its value, view first.
+    pub(super) fn pairs(&self) -> impl Iterator<Item = (Toward, &T)> {
+        Toward::ALL.into_iter().zip(self.iter())
+    }
+}
+
+impl<T> Index<Toward> for PerDirection<T> {
+    type Output = T;
+
+    #[inline]
+    fn index(&self, k: Toward) -> &T {
+        match k {
+            Toward::View => &self.view,
+            Toward::Sun => &self.sun,
+            Toward::Earth => &self.earth,
+        }
+    }
+}
+
+impl<T> IndexMut<Toward> for PerDirection<T> {
+    #[inline]
+    fn index_mut(&mut self, k: Toward) -> &mut T {
+        match k {
+            Toward::View => &mut self.view,
+            Toward::Sun => &mut self.sun,
+            Toward::Earth => &mut self.earth,
+        }
+    }
+}

@@ -37,7 +37,7 @@ fn a_sun_tracking_panel_faces_the_suns_projection() {
     let a = scene.articulation.as_ref().expect("articulated");
     let mut worst: f64 = 0.0;
     for e in &scene.epochs {
-        let posed = a.pose(&scene.mesh.vertices, &a.angles(e));
+        let posed = a.pose(&scene.mesh.vertices, &a.angles(e.t, e.sun));
         let n = normal_of(&scene.mesh, &posed, 1);
         let s = DVec3::new(e.sun.x, 0.0, e.sun.z).normalize();
         assert!(n.y.abs() < 1e-12, "normal off the plane: {n}");
@@ -94,7 +94,7 @@ fn a_plate_tracked_on_two_axes_gives_the_flat_plate_closed_form() {
     let a = scene.articulation.as_ref().expect("articulated");
     assert_eq!(a.joints[1].parent, Some(0));
     for e in &scene.epochs {
-        let posed = a.pose(&scene.mesh.vertices, &a.angles(e));
+        let posed = a.pose(&scene.mesh.vertices, &a.angles(e.t, e.sun));
         let n = normal_of(&scene.mesh, &posed, 0);
         assert!(
             (n - e.sun).length() < 1e-12,
@@ -269,7 +269,11 @@ fn identical_angles_share_one_pose() {
         r.summary.method
     );
     let a = scene.articulation.as_ref().unwrap();
-    let first = glint::integrate::articulated::posed(&scene, a, &a.angles(&scene.epochs[0]));
+    let first = glint::integrate::articulated::posed(
+        &scene,
+        a,
+        &a.angles(scene.epochs[0].t, scene.epochs[0].sun),
+    );
     let mut one = first.clone();
     one.epochs = scene.epochs.clone();
     one.sky = scene.sky.clone();

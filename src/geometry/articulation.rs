@@ -9,7 +9,6 @@
 //! those lying on their own hinge line are placed exactly where the parent puts them, so
 //! a hinge stays welded (same position, bit for bit) to what it hangs from.
 
-use crate::scene::Epoch;
 use glam::{DMat3, DVec3};
 
 /// How a hinge's angle is found at each epoch (radians).
@@ -123,18 +122,19 @@ pub fn interpolate(series: &[(f64, f64)], t: f64) -> f64 {
 }
 
 impl Articulation {
-    /// Each joint's angle (radians) and motion (reference pose → body frame) at `epoch`.
-    pub fn motions(&self, epoch: &Epoch) -> (Vec<f64>, Vec<Motion>) {
+    /// Each joint's angle (radians) and motion (reference pose → body frame) at time `t`
+    /// (s, the epochs' scale) with the Sun along unit `sun` (body frame).
+    pub fn motions(&self, t: f64, sun: DVec3) -> (Vec<f64>, Vec<Motion>) {
         let mut angles = Vec::with_capacity(self.joints.len());
         let mut motions: Vec<Motion> = Vec::with_capacity(self.joints.len());
         for j in &self.joints {
             let parent = j.parent.map_or(Motion::IDENTITY, |p| motions[p]);
             let angle = match &j.law {
                 JointLaw::Fixed { angle } => *angle,
-                JointLaw::Series { series } => interpolate(series, epoch.t),
+                JointLaw::Series { series } => interpolate(series, t),
                 JointLaw::SunTracking { normal } => {
                     let axis = parent.rot * j.axis;
-                    angle_about(axis, parent.rot * *normal, epoch.sun).unwrap_or(0.0)
+                    angle_about(axis, parent.rot * *normal, sun).unwrap_or(0.0)
                 }
             };
             angles.push(angle);
@@ -143,9 +143,9 @@ impl Articulation {
         (angles, motions)
     }
 
-    /// Each joint's angle at `epoch`, radians.
-    pub fn angles(&self, epoch: &Epoch) -> Vec<f64> {
-        self.motions(epoch).0
+    /// Each joint's angle, radians, at time `t` (s) with the Sun along unit `sun`.
+    pub fn angles(&self, t: f64, sun: DVec3) -> Vec<f64> {
+        self.motions(t, sun).0
     }
 
     /// The mesh's vertices (`reference`, the mesh as validated) posed at these angles.

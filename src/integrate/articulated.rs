@@ -23,7 +23,11 @@ use std::sync::atomic::AtomicU64;
 /// The epochs grouped by their hinge angles: (angles, epoch indices), in order of each
 /// group's first epoch.
 pub fn poses(scene: &Scene, a: &Articulation) -> Vec<(Vec<f64>, Vec<usize>)> {
-    let angles: Vec<Vec<f64>> = scene.epochs.par_iter().map(|e| a.angles(e)).collect();
+    let angles: Vec<Vec<f64>> = scene
+        .epochs
+        .par_iter()
+        .map(|e| a.angles(e.t, e.sun))
+        .collect();
     let mut index: HashMap<Vec<u64>, usize> = HashMap::new();
     let mut groups: Vec<(Vec<f64>, Vec<usize>)> = Vec::new();
     for (i, angle) in angles.into_iter().enumerate() {
@@ -140,7 +144,7 @@ fn thumbnails(
         .par_iter()
         .map(|&i| {
             let epoch = &scene.epochs[i];
-            let s = posed(scene, a, &a.angles(epoch));
+            let s = posed(scene, a, &a.angles(epoch.t, epoch.sun));
             crate::render::Renderer::new(&s).render_until(
                 epoch,
                 spec.size,

@@ -42,6 +42,19 @@ pub struct Joint {
     pub law: JointLaw,
 }
 
+impl Joint {
+    /// The joint's link's motion (reference pose → body frame): its hinge turned by
+    /// `angle` (radians), after its parent's motion `parent`.
+    fn motion(&self, parent: Motion, angle: f64) -> Motion {
+        parent.after(&Motion::hinge(self.axis, self.pivot, angle))
+    }
+}
+
+/// The motion of joint `j`'s parent link among `motions` (the earlier joints'), or none.
+fn parent_motion(j: &Joint, motions: &[Motion]) -> Motion {
+    j.parent.map_or(Motion::IDENTITY, |p| motions[p])
+}
+
 /// Body: the vertices no hinge moves.
 pub const BODY: u32 = u32::MAX;
 
@@ -128,7 +141,7 @@ impl Articulation {
         let mut angles = Vec::with_capacity(self.joints.len());
         let mut motions: Vec<Motion> = Vec::with_capacity(self.joints.len());
         for j in &self.joints {
-            let parent = j.parent.map_or(Motion::IDENTITY, |p| motions[p]);
+            let parent = parent_motion(j, &motions);
             let angle = match &j.law {
                 JointLaw::Fixed { angle } => *angle,
                 JointLaw::Series { series } => interpolate(series, t),
@@ -138,7 +151,7 @@ impl Articulation {
                 }
             };
             angles.push(angle);
-            motions.push(parent.after(&Motion::hinge(j.axis, j.pivot, angle)));
+            motions.push(j.motion(parent, angle));
         }
         (angles, motions)
     }
@@ -152,8 +165,7 @@ impl Articulation {
     pub fn pose(&self, reference: &[DVec3], angles: &[f64]) -> Vec<DVec3> {
         let mut motions: Vec<Motion> = Vec::with_capacity(self.joints.len());
         for (j, &a) in self.joints.iter().zip(angles) {
-            let parent = j.parent.map_or(Motion::IDENTITY, |p| motions[p]);
-            motions.push(parent.after(&Motion::hinge(j.axis, j.pivot, a)));
+            motions.push(j.motion(parent_motion(j, &motions), a));
         }
         reference
             .iter()

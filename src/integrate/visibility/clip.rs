@@ -207,6 +207,16 @@ impl ToPlane {
         let h = self.plane.n.dot(y - self.plane.c);
         (self.plane.at(y) - self.along * h, h)
     }
+
+    /// Appends to `out` the hull `corners` (indices into `vertices`) projected onto the
+    /// plane: the projection is affine, so they stay the projected hull's corners, in order.
+    fn project_hull(&self, corners: &[u32], vertices: &[DVec3], out: &mut Vec<DVec2>) {
+        out.extend(
+            corners
+                .iter()
+                .map(|&j| self.project(vertices[j as usize]).0),
+        );
+    }
 }
 
 /// One direction's shadows cast on a face: the direction, the projection onto the face's
@@ -309,12 +319,7 @@ impl Shadows<'_> {
                     .extend(ps.crossings.iter().map(|y| to_plane.project(*y).0));
                 convex_hull(&x.part_points, &mut x.hull_order, &mut x.shadow);
             } else {
-                // the projection onto this plane is affine: the same corners, in order
-                x.shadow.extend(
-                    hull.corners
-                        .iter()
-                        .map(|&j| to_plane.project(part.vertices[j as usize]).0),
-                );
+                to_plane.project_hull(&hull.corners, &part.vertices, &mut x.shadow);
             }
             if subtract(region, &x.shadow)? {
                 return Some(true);
@@ -332,11 +337,7 @@ impl Shadows<'_> {
             let part = &vis.parts[p as usize].convex;
             let hull = vis.silhouette(self.silhouettes, p, self.d);
             x.shadow.clear();
-            x.shadow.extend(
-                hull.corners
-                    .iter()
-                    .map(|&j| to_plane.project(part.vertices[j as usize]).0),
-            );
+            to_plane.project_hull(&hull.corners, &part.vertices, &mut x.shadow);
             if subtract(region, &x.shadow)? {
                 return Some(true);
             }

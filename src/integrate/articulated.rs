@@ -11,7 +11,7 @@
 //! constant) share one preparation; a Sun-tracking array, whose angle changes every
 //! epoch, prepares every epoch anew.
 
-use super::{evaluate_epochs, methods, Cancelled, Prepared, PreparedInfo, Progress};
+use super::{eq12, evaluate_epochs, methods, Cancelled, Prepared, PreparedInfo, Progress};
 use crate::geometry::articulation::Articulation;
 use crate::geometry::Mesh;
 use crate::scene::response::Thumbnail;
@@ -86,6 +86,7 @@ type Evaluated = (
 pub fn simulate(
     scene: &Scene,
     a: &Articulation,
+    lightings: &[eq12::Lighting],
     progress: &Progress,
     rays: &AtomicU64,
 ) -> Result<Evaluated, Cancelled> {
@@ -99,7 +100,8 @@ pub fn simulate(
             }
             let s = posed(scene, a, angles);
             let prepared = Prepared::new(&s);
-            let results = evaluate_epochs(&prepared, &scene.epochs, which, progress, rays);
+            let results =
+                evaluate_epochs(&prepared, lightings, &scene.epochs, which, progress, rays);
             let info = (g == 0).then(|| PreparedInfo::of(&prepared));
             (which.iter().copied().zip(results).collect(), info)
         })

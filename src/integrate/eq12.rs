@@ -11,8 +11,27 @@ use crate::brdf::earth_light::EarthLight;
 use crate::brdf::sun_disk::{EarthDisk, SunLight};
 use crate::brdf::Frame;
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
-use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination};
+use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination, Material, Scene};
 use glam::DVec3;
+
+/// What lights the prepared mesh in an evaluation: the materials and the illumination.
+/// A scene's own ([`Lighting::of`]), or one wavelength bin's (its materials at the bin's
+/// wavelength, its share of the Sun), so that the bins share one preparation.
+#[derive(Clone, Copy)]
+pub struct Lighting<'s> {
+    pub materials: &'s [Material],
+    pub illumination: Illumination,
+}
+
+impl<'s> Lighting<'s> {
+    /// The scene's own materials and illumination.
+    pub fn of(scene: &'s Scene) -> Lighting<'s> {
+        Lighting {
+            materials: &scene.materials,
+            illumination: scene.illumination,
+        }
+    }
+}
 
 /// Per-thread buffers reused across epochs.
 #[derive(Default)]
@@ -120,11 +139,12 @@ impl Directions {
 /// method's rows); once it returns true the result is meaningless and the caller drops it.
 pub fn evaluate(
     p: &Prepared,
+    lighting: &Lighting,
     epoch: &Epoch,
     scratch: &mut Scratch,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> (EpochResult, u64) {
-    let ill = &p.scene.illumination;
+    let ill = &lighting.illumination;
     let range = epoch.observer.length();
     let light = EpochLight::at(ill, epoch);
     let dirs = Directions {
@@ -133,7 +153,7 @@ pub fn evaluate(
         sun_w_m2: light.sun_w_m2,
         earth: light.earthshine.shadow_dir,
     };
-    let lights = material_lights(p, epoch, dirs.view, &light);
+    let lights = material_lights(lighting.materials, epoch, dirs.view, &light);
     let (decided, unshadowed) = lit_faces(p, &lights, &dirs, scratch);
     let (sums, rays) = visible_sums(p, &dirs, decided, unshadowed, scratch, cancelled);
     (epoch_result(p, epoch, range, dirs.view, &light, sums), rays)
@@ -142,14 +162,13 @@ pub fn evaluate(
 /// Per material, what lights its faces at this epoch with what does not depend on the
 /// face computed once: the Sun's and each earthshine beam's half vector and Fresnel term.
 fn material_lights<'a>(
-    p: &'a Prepared,
+    materials: &'a [Material],
     epoch: &Epoch,
     v: DVec3,
     light: &'a EpochLight,
 ) -> Vec<MaterialLight<'a>> {
     let sun_radius = sun::angular_radius(epoch.sun_distance_m);
-    p.scene
-        .materials
+    materials
         .iter()
         .map(|m| MaterialLight {
             two_sided: m.two_sided,

@@ -213,7 +213,7 @@ pub fn simulate_with(scene: &Scene, progress: &Progress) -> Result<Response, Can
         .total
         .store(scene.epochs.len() * bins, Ordering::Relaxed);
     if scene.spectral.is_empty() {
-        simulate_counted(scene, progress)
+        simulate_counted(scene, &[eq12::Lighting::of(scene)], progress)
     } else {
         simulate_spectral(scene, progress)
     }
@@ -230,26 +230,19 @@ fn simulate_spectral(scene: &Scene, progress: &Progress) -> Result<Response, Can
         thumbnails: None,
         ..scene.clone()
     };
-    let mut total: Option<Response> = None;
-    for bin in &scene.spectral {
-        let mut s = base.clone();
-        s.materials = bin.materials.clone();
-        s.illumination.sun_share = bin.share;
-        let r = simulate_counted(&s, progress)?;
-        match &mut total {
-            None => total = Some(r),
-            Some(t) => {
-                for (a, b) in t.epochs.iter_mut().zip(&r.epochs) {
-                    a.irradiance_w_m2 += b.irradiance_w_m2;
-                    a.sun_w_m2 += b.sun_w_m2;
-                    a.earthshine_w_m2 += b.earthshine_w_m2;
-                    a.intensity_w_sr += b.intensity_w_sr;
-                }
-                t.summary.rays += r.summary.rays;
-            }
-        }
-    }
-    let mut r = total.expect("at least one bin");
+    // each bin: its materials at its wavelength, its share of the Sun; one preparation
+    let lightings: Vec<eq12::Lighting> = scene
+        .spectral
+        .iter()
+        .map(|bin| eq12::Lighting {
+            materials: &bin.materials,
+            illumination: crate::scene::Illumination {
+                sun_share: bin.share,
+                ..scene.illumination
+            },
+        })
+        .collect();
+    let mut r = simulate_counted(&base, &lightings, progress)?;
     let ill = &scene.illumination;
     for e in &mut r.epochs {
         let phase = e.phase_angle_deg.to_radians();
@@ -334,42 +327,69 @@ impl PreparedInfo {
 }
 
 /// The epochs `which` (indices into `epochs`) of a prepared scene, in parallel, each
-/// counted in `progress`; `None` where cancelled.
+/// counted in `progress`; `None` where cancelled. With several `lightings` (a spectral
+/// scene's wavelength bins) each epoch is evaluated under each, in order, and their
+/// irradiances and intensities summed: one preparation serves every bin.
 pub fn evaluate_epochs(
     prepared: &Prepared,
+    lightings: &[eq12::Lighting],
     epochs: &[crate::scene::Epoch],
     which: &[usize],
     progress: &Progress,
     rays: &AtomicU64,
 ) -> Vec<Option<EpochResult>> {
-    which
-        .par_iter()
-        .map_init(eq12::Scratch::default, |scratch, &i| {
-            if progress.is_cancelled() {
-                return None;
+    let under = |lighting: &eq12::Lighting| -> Vec<Option<EpochResult>> {
+        which
+            .par_iter()
+            .map_init(eq12::Scratch::default, |scratch, &i| {
+                if progress.is_cancelled() {
+                    return None;
+                }
+                let (result, n) = eq12::evaluate(prepared, lighting, &epochs[i], scratch, &|| {
+                    progress.is_cancelled()
+                });
+                rays.fetch_add(n, Ordering::Relaxed);
+                progress.done.fetch_add(1, Ordering::Relaxed);
+                Some(result)
+            })
+            .collect()
+    };
+    let (first, rest) = lightings.split_first().expect("at least one lighting");
+    let mut total = under(first);
+    for lighting in rest {
+        for (t, r) in total.iter_mut().zip(under(lighting)) {
+            match (t.as_mut(), r) {
+                (Some(a), Some(b)) => {
+                    a.irradiance_w_m2 += b.irradiance_w_m2;
+                    a.sun_w_m2 += b.sun_w_m2;
+                    a.earthshine_w_m2 += b.earthshine_w_m2;
+                    a.intensity_w_sr += b.intensity_w_sr;
+                }
+                _ => *t = None,
             }
-            let (result, n) =
-                eq12::evaluate(prepared, &epochs[i], scratch, &|| progress.is_cancelled());
-            rays.fetch_add(n, Ordering::Relaxed);
-            progress.done.fetch_add(1, Ordering::Relaxed);
-            Some(result)
-        })
-        .collect()
+        }
+    }
+    total
 }
 
 /// [`simulate_with`] for one scene, progress counted but its total left as it is.
-fn simulate_counted(scene: &Scene, progress: &Progress) -> Result<Response, Cancelled> {
+fn simulate_counted(
+    scene: &Scene,
+    lightings: &[eq12::Lighting],
+    progress: &Progress,
+) -> Result<Response, Cancelled> {
     let start = Instant::now();
     let rays = AtomicU64::new(0);
     let all: Vec<usize> = (0..scene.epochs.len()).collect();
     let (epochs, info, thumbnails) = match &scene.articulation {
-        Some(a) => articulated::simulate(scene, a, progress, &rays)?,
+        Some(a) => articulated::simulate(scene, a, lightings, progress, &rays)?,
         None => {
             // `centroid` with subdivisions samples a refined copy of the mesh
             let refined = methods::refined_for_centroid(scene);
             let scene = refined.as_ref().unwrap_or(scene);
             let prepared = Prepared::new(scene);
-            let epochs = evaluate_epochs(&prepared, &scene.epochs, &all, progress, &rays);
+            let epochs =
+                evaluate_epochs(&prepared, lightings, &scene.epochs, &all, progress, &rays);
             // Images only when asked for: a light curve without them pays nothing.
             let thumbnails = match &scene.thumbnails {
                 Some(spec) if !progress.is_cancelled() => Some(

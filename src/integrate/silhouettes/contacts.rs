@@ -84,7 +84,9 @@ pub(super) fn contact_segments(
         })
         .collect();
     let grid = BoxGrid::build(&boxes, tol);
-    let pairs = meeting_pairs(mesh, welded, tri_face, &corners, &boxes, &grid, tol);
+    let mut pairs = meeting_pairs(mesh, welded, tri_face, &corners, &boxes, &grid, tol);
+    // in one order whatever found them: a face's pieces are joined from the first one on
+    pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
     join_pieces(&pairs, &corners, tri_face, tol)
 }
 

@@ -6,6 +6,7 @@
 use crate::geometry::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 /// Where another piece meets a face: a segment in the face's plane (m) and the other
 /// piece's triangle (its corners, m, and its face) that meets the face along it. Above
@@ -63,7 +64,7 @@ impl Contact {
 }
 
 /// Segments (m) where triangles of different faces that share no vertex meet: each is
-/// recorded on both faces. Found through a uniform grid of the triangles' boxes.
+/// recorded on both faces. Found through grids of the triangles' boxes ([`LevelGrid`]).
 pub(super) fn contact_segments(
     mesh: &Mesh,
     welded: &[u32],
@@ -83,109 +84,146 @@ pub(super) fn contact_segments(
             (lo, hi)
         })
         .collect();
-    let grid = BoxGrid::build(&boxes, tol);
+    let grid = LevelGrid::build(&boxes, tol);
     let mut pairs = meeting_pairs(mesh, welded, tri_face, &corners, &boxes, &grid, tol);
     // in one order whatever found them: a face's pieces are joined from the first one on
     pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
     join_pieces(&pairs, &corners, tri_face, tol)
 }
 
-/// The triangles' boxes binned in a uniform grid of cells.
-struct BoxGrid {
+/// The triangles' boxes binned in grids of cells at levels of doubling size, each
+/// triangle at the level where its box spans at most two cells along each axis, and only
+/// occupied cells stored. One uniform grid fits no mesh with both a finely meshed dish and
+/// long panels: cells as small as the dish's triangles would be millions along a panel,
+/// cells fit for the panels would each hold hundreds of the dish's triangles.
+struct LevelGrid {
     lo: DVec3,
-    /// Cell side, m.
+    /// Level 0's cell side, m.
     cell: f64,
-    dims: glam::UVec3,
-    /// Per cell: its range of `binned` (CSR).
+    /// Per triangle: its level.
+    level: Vec<u8>,
+    levels: Vec<Level>,
+}
+
+/// One level's occupied cells.
+#[derive(Default)]
+struct Level {
+    /// Cell key → its range of `binned` (CSR, `start[i]..start[i + 1]`).
+    index: FxHashMap<u64, u32>,
     start: Vec<u32>,
     binned: Vec<u32>,
 }
 
-impl BoxGrid {
-    fn build(boxes: &[(DVec3, DVec3)], tol: f64) -> BoxGrid {
-        let nt = boxes.len();
+/// Bits of a cell coordinate in a key (cells along an axis at level 0 are capped below
+/// 2^BITS).
+const BITS: u32 = 21;
+
+impl LevelGrid {
+    fn build(boxes: &[(DVec3, DVec3)], tol: f64) -> LevelGrid {
         let (lo, hi) = boxes
             .iter()
             .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), b| {
                 (lo.min(b.0), hi.max(b.1))
             });
-        // cells of about the median triangle's box size
-        let mut sizes: Vec<f64> = boxes.iter().map(|b| (b.1 - b.0).max_element()).collect();
+        let size = |b: &(DVec3, DVec3)| (b.1 - b.0).max_element();
+        // level 0: cells of about the median triangle's box
+        let mut sizes: Vec<f64> = boxes.iter().map(size).collect();
         let mid = sizes.len() / 2;
         sizes.select_nth_unstable_by(mid, f64::total_cmp);
-        let extent = (hi - lo).max(DVec3::splat(tol));
-        // at most ~8 cells a triangle (a finely meshed dish beside long panels would
-        // otherwise ask for millions of empty cells), and at most 1024 along an axis
-        let volume = extent.x * extent.y * extent.z;
+        let extent = (hi - lo).max_element().max(tol);
         let cell = sizes[mid]
-            .max((volume / (8.0 * nt as f64).min(4.0e6)).cbrt())
-            .max(extent.max_element() / 1024.0)
+            .max(extent / (1u64 << (BITS - 1)) as f64)
             .max(tol);
-        let dims =
-            ((extent / cell).ceil().as_uvec3()).clamp(glam::UVec3::ONE, glam::UVec3::splat(1025));
-        let mut grid = BoxGrid {
+        let level: Vec<u8> = boxes
+            .iter()
+            .map(|b| {
+                let mut k = 0;
+                while size(b) > cell * (1u64 << k) as f64 && k < 63 {
+                    k += 1;
+                }
+                k as u8
+            })
+            .collect();
+        let top = level.iter().copied().max().unwrap_or(0) as usize;
+        let mut grid = LevelGrid {
             lo,
             cell,
-            dims,
-            start: Vec::new(),
-            binned: Vec::new(),
+            level,
+            levels: Vec::new(),
         };
-        // the triangles binned by cell (a counting sort: no comparison sort of the entries)
-        let n_cells = (dims.x * dims.y * dims.z) as usize;
-        let mut start = vec![0u32; n_cells + 1];
-        for b in boxes {
-            for c in grid.cells_of(*b) {
-                start[grid.linear(c) + 1] += 1;
-            }
-        }
-        for i in 0..n_cells {
-            start[i + 1] += start[i];
-        }
-        let mut fill = start.clone();
-        let mut binned = vec![0u32; start[n_cells] as usize];
-        for (t, b) in boxes.iter().enumerate() {
-            for c in grid.cells_of(*b) {
-                let k = grid.linear(c);
-                binned[fill[k] as usize] = t as u32;
-                fill[k] += 1;
-            }
-        }
-        grid.start = start;
-        grid.binned = binned;
+        grid.levels = (0..=top).map(|k| grid.bin(boxes, k as u8)).collect();
         grid
     }
 
-    /// The cell holding point `p` (clamped to the grid).
-    fn index(&self, p: DVec3) -> glam::UVec3 {
-        let q = ((p - self.lo) / self.cell).floor();
-        glam::UVec3::new(
-            (q.x.max(0.0) as u32).min(self.dims.x - 1),
-            (q.y.max(0.0) as u32).min(self.dims.y - 1),
-            (q.z.max(0.0) as u32).min(self.dims.z - 1),
-        )
+    /// Level `k`'s cells, with the triangles at that level binned (a counting sort).
+    fn bin(&self, boxes: &[(DVec3, DVec3)], k: u8) -> Level {
+        let mut level = Level::default();
+        let mut count: Vec<u32> = Vec::new();
+        let mut keys: Vec<(u32, usize)> = Vec::new();
+        for (t, b) in boxes.iter().enumerate() {
+            if self.level[t] != k {
+                continue;
+            }
+            self.cells_of(*b, k, |key| {
+                let next = level.index.len() as u32;
+                let i = *level.index.entry(key).or_insert(next);
+                if i as usize == count.len() {
+                    count.push(0);
+                }
+                count[i as usize] += 1;
+                keys.push((i, t));
+            });
+        }
+        level.start = Vec::with_capacity(count.len() + 1);
+        level.start.push(0);
+        for c in &count {
+            level.start.push(level.start.last().unwrap() + c);
+        }
+        let mut fill = level.start.clone();
+        level.binned = vec![0; keys.len()];
+        for (i, t) in keys {
+            level.binned[fill[i as usize] as usize] = t as u32;
+            fill[i as usize] += 1;
+        }
+        level
     }
 
-    fn linear(&self, c: glam::UVec3) -> usize {
-        (c.x + self.dims.x * (c.y + self.dims.y * c.z)) as usize
+    /// Calls `each` with the key of every cell at level `k` that box `b` touches.
+    #[inline]
+    fn cells_of(&self, b: (DVec3, DVec3), k: u8, mut each: impl FnMut(u64)) {
+        let side = self.cell * (1u64 << k) as f64;
+        let max = ((1u64 << BITS) - 1) as f64;
+        let at = |p: DVec3| {
+            ((p - self.lo) / side)
+                .floor()
+                .clamp(DVec3::ZERO, DVec3::splat(max))
+        };
+        let (a, z) = (at(b.0).as_u64vec3(), at(b.1).as_u64vec3());
+        for w in a.z..=z.z {
+            for y in a.y..=z.y {
+                for x in a.x..=z.x {
+                    each(x | y << BITS | w << (2 * BITS));
+                }
+            }
+        }
     }
 
-    /// The cells box `b` touches.
-    fn cells_of(&self, b: (DVec3, DVec3)) -> impl Iterator<Item = glam::UVec3> {
-        let (a, z) = (self.index(b.0), self.index(b.1));
-        (a.z..=z.z).flat_map(move |w| {
-            (a.y..=z.y).flat_map(move |y| (a.x..=z.x).map(move |x| glam::UVec3::new(x, y, w)))
-        })
-    }
-
-    /// The triangles binned in cell `k` (linear index).
-    fn in_cell(&self, k: usize) -> &[u32] {
-        &self.binned[self.start[k] as usize..self.start[k + 1] as usize]
-    }
-
-    /// How many cells box `b` touches.
-    fn span(&self, b: (DVec3, DVec3)) -> u32 {
-        let (a, z) = (self.index(b.0), self.index(b.1));
-        (z - a + glam::UVec3::ONE).element_product()
+    /// Calls `each` with every triangle binned at level `k` in a cell that box `b`
+    /// touches (a triangle in several of them, once per cell).
+    #[inline]
+    fn near(&self, b: (DVec3, DVec3), k: u8, mut each: impl FnMut(u32)) {
+        let level = &self.levels[k as usize];
+        if level.binned.is_empty() {
+            return;
+        }
+        self.cells_of(b, k, |key| {
+            if let Some(&i) = level.index.get(&key) {
+                let (s, e) = (level.start[i as usize], level.start[i as usize + 1]);
+                level.binned[s as usize..e as usize]
+                    .iter()
+                    .for_each(|&t| each(t));
+            }
+        });
     }
 }
 
@@ -197,29 +235,28 @@ fn meeting_pairs(
     tri_face: &[u32],
     corners: &[[DVec3; 3]],
     boxes: &[(DVec3, DVec3)],
-    grid: &BoxGrid,
+    grid: &LevelGrid,
     tol: f64,
 ) -> Vec<(u32, u32, (DVec3, DVec3))> {
     let nt = boxes.len();
-    // each pair sharing a cell is tested once, by the triangle of the two that spans fewer
-    // cells (a large panel's triangle is found by the small ones in its cells, instead of
-    // scanning them all), and the pairs are then put in order
-    let spans: Vec<u32> = boxes.iter().map(|&b| grid.span(b)).collect();
+    // each pair is tested once: by its triangle at the finer level, which looks at its
+    // own level and every coarser one (at most 8 cells each), or at one level by the
+    // lower index
     (0..nt)
         .into_par_iter()
         .map_init(
             || (vec![u32::MAX; nt], Vec::new()),
             |(stamp, near), s| {
                 near.clear();
-                let mine = (spans[s], s);
-                for c in grid.cells_of(boxes[s]) {
-                    for &t in grid.in_cell(grid.linear(c)) {
+                let ks = grid.level[s];
+                for k in ks..grid.levels.len() as u8 {
+                    grid.near(boxes[s], k, |t| {
                         let ti = t as usize;
-                        if ti != s && mine < (spans[ti], ti) && stamp[ti] != s as u32 {
+                        if (k > ks || ti > s) && stamp[ti] != s as u32 {
                             stamp[ti] = s as u32;
                             near.push(t);
                         }
-                    }
+                    });
                 }
                 let mut found = Vec::new();
                 for &t in near.iter() {
@@ -385,6 +422,76 @@ fn cut_by_plane(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::builtin::geodesic_sphere;
+
+    /// Every pair that meets, by testing all pairs (the truth the grids must find).
+    fn all_pairs(mesh: &Mesh, welded: &[u32], tol: f64) -> Vec<(u32, u32, (DVec3, DVec3))> {
+        let nt = mesh.triangles.len();
+        let mut out = Vec::new();
+        for s in 0..nt {
+            for t in s + 1..nt {
+                let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
+                if ts
+                    .iter()
+                    .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]))
+                {
+                    continue;
+                }
+                if let Some(seg) = meet(&mesh.corners(s), &mesh.corners(t), tol) {
+                    out.push((s as u32, t as u32, seg));
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_level_grids_find_every_meeting_pair_of_a_mesh_of_mixed_scales() {
+        // a 40 m plate (two triangles), a finely meshed ball sunk into it, and a long thin
+        // rod through the ball: triangles from 40 m to ~3 cm, at several levels
+        let mut mesh = Mesh {
+            vertices: vec![
+                DVec3::new(-20.0, -20.0, 0.0),
+                DVec3::new(20.0, -20.0, 0.0),
+                DVec3::new(20.0, 20.0, 0.0),
+                DVec3::new(-20.0, 20.0, 0.0),
+                DVec3::new(-3.0, 0.01, 0.2),
+                DVec3::new(3.0, 0.01, 0.2),
+                DVec3::new(0.0, 0.03, 0.21),
+            ],
+            triangles: vec![[0, 1, 2], [0, 2, 3], [4, 5, 6]],
+            material_ids: vec![0; 3],
+        };
+        let ball = geodesic_sphere(12, 0.3);
+        let base = mesh.vertices.len() as u32;
+        mesh.vertices
+            .extend(ball.vertices.iter().map(|v| *v + DVec3::new(0.4, 0.1, 0.2)));
+        mesh.triangles
+            .extend(ball.triangles.iter().map(|t| t.map(|k| k + base)));
+        mesh.material_ids.resize(mesh.triangles.len(), 0);
+        let nt = mesh.triangles.len();
+        let welded = mesh.welded_ids();
+        let tri_face: Vec<u32> = (0..nt as u32).collect();
+        let tol = 1e-9;
+        let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
+        let boxes: Vec<(DVec3, DVec3)> = corners
+            .iter()
+            .map(|c| {
+                let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(tol);
+                (lo, c[0].max(c[1]).max(c[2]) + DVec3::splat(tol))
+            })
+            .collect();
+        let grid = LevelGrid::build(&boxes, tol);
+        assert!(grid.levels.len() > 5, "{} levels", grid.levels.len());
+        let mut found = meeting_pairs(&mesh, &welded, &tri_face, &corners, &boxes, &grid, tol);
+        found.sort_unstable_by_key(|&(s, t, _)| (s, t));
+        let truth = all_pairs(&mesh, &welded, tol);
+        // the ball crosses the plate and the rod: dozens of pairs, each found once
+        assert!(truth.len() > 40, "{} pairs", truth.len());
+        let key =
+            |v: &[(u32, u32, (DVec3, DVec3))]| v.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>();
+        assert_eq!(key(&found), key(&truth));
+    }
 
     #[test]
     fn a_post_standing_on_a_plate_meets_it_along_its_foot() {

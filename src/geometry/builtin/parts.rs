@@ -80,7 +80,7 @@ pub fn subdivide(mesh: &Mesh, levels: u32) -> Mesh {
             triangles: Vec::with_capacity(out.triangles.len() * 4),
             material_ids: Vec::with_capacity(out.triangles.len() * 4),
         };
-        let mut midpoint = std::collections::HashMap::new();
+        let mut midpoint = rustc_hash::FxHashMap::default();
         let mut mid = |a: u32, b: u32, v: &mut Vec<DVec3>| -> u32 {
             *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
                 v.push(0.5 * (v[a as usize] + v[b as usize]));

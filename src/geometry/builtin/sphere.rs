@@ -48,7 +48,7 @@ pub fn icosphere(level: u32, r: f64) -> Mesh {
         [9, 8, 1],
     ];
     for _ in 0..level {
-        let mut midpoint = std::collections::HashMap::new();
+        let mut midpoint = rustc_hash::FxHashMap::default();
         let mut mid = |a: u32, b: u32, vertices: &mut Vec<DVec3>| -> u32 {
             *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
                 vertices.push((vertices[a as usize] + vertices[b as usize]).normalize());
@@ -81,7 +81,7 @@ pub fn geodesic_sphere(n: u32, r: f64) -> Mesh {
     let mut mesh = Mesh::default();
     // a point by its icosahedron corners and integer weights, sorted: the same key from
     // every face that shares it
-    let mut index: std::collections::HashMap<[(u32, u32); 3], u32> = Default::default();
+    let mut index: rustc_hash::FxHashMap<[(u32, u32); 3], u32> = Default::default();
     for tri in &ico.triangles {
         let mut id = |i: u32, j: u32| -> u32 {
             let mut key = [(tri[0], n - i - j), (tri[1], i), (tri[2], j)].map(|(v, w)| {

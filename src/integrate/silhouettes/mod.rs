@@ -119,10 +119,16 @@ impl<'a> Silhouettes<'a> {
             .collect();
         let (_, scale) = mesh.bounding_sphere();
         let eps = 1e-9 * scale;
-        let topo = Topology::build(mesh, faces, &tri_face, &two_sided, eps);
-        let polys = Polygons::build(mesh, faces, two_sided);
-        let patches = Patches::build(&polys, &topo);
-        let rays = Rays::build(&polys, &topo.open);
+        // the topology and the polygons need only the faces, the patches and the rays
+        // only those two: built two at a time
+        let (topo, polys) = rayon::join(
+            || Topology::build(mesh, faces, &tri_face, &two_sided, eps),
+            || Polygons::build(mesh, faces, two_sided.clone()),
+        );
+        let (patches, rays) = rayon::join(
+            || Patches::build(&polys, &topo),
+            || Rays::build(&polys, &topo.open),
+        );
         let mut triangles_at = vec![0u32];
         let mut triangles = Vec::with_capacity(mesh.triangles.len());
         for f in &faces.faces {

@@ -287,6 +287,7 @@ fn visible_sums(
             let wanted = lit.iter().map(|lf| (lf.face, lf.sun > 0.0, lf.earth > 0.0));
             sil.want(silhouettes, wanted);
             sil.prepare(silhouettes, 0, Some(dirs.view));
+            sil.drop_hidden(silhouettes);
             sil.prepare(silhouettes, 1, dirs.sunlit());
             sil.prepare(silhouettes, 2, dirs.earth);
             let mut rays = sil.group_rays(silhouettes);

@@ -58,6 +58,30 @@ impl Silhouettes<'_> {
         }
     }
 
+    /// After the view direction is prepared: a face it hides whole has no area seen and
+    /// lit whatever the Sun and the Earth do, so no other direction is asked about it
+    /// (nor about a patch left with no face to decide). Lines and counts of the faces
+    /// still asked about do not change.
+    pub fn drop_hidden(&self, scratch: &mut Scratch) {
+        let view = &scratch.dirs[0];
+        if !view.used {
+            return;
+        }
+        let mut dropped = false;
+        for (f, w) in scratch.wanted.iter_mut().enumerate() {
+            if *w & 0b110 != 0 && self.status(view, f) == Status::Dark {
+                *w &= 1;
+                dropped = true;
+            }
+        }
+        if dropped {
+            scratch.patch_wanted.fill(0);
+            for (f, &w) in scratch.wanted.iter().enumerate() {
+                scratch.patch_wanted[self.patches.of_face[f] as usize] |= w;
+            }
+        }
+    }
+
     /// Areas (m²) of `face` (area `area`, m²) that are seen and sunlit, and seen and
     /// earthlit, with the directions prepared for this epoch; `sun` and `earth` say
     /// which are wanted; plus the rays cast.

@@ -63,11 +63,14 @@ impl Contact {
 }
 
 /// Segments (m) where triangles of different faces that share no vertex meet: each is
-/// recorded on both faces. Found through a uniform grid of the triangles' boxes.
+/// recorded on both faces. Found through a uniform grid of the triangles' boxes. With
+/// `group` (per triangle), only triangles of one group are paired: the contacts that a
+/// rigid motion of each group carries along ([`Across`] finds the others).
 pub(super) fn contact_segments(
     mesh: &Mesh,
     welded: &[u32],
     tri_face: &[u32],
+    group: Option<&[u32]>,
     tol: f64,
 ) -> Vec<(u32, Contact)> {
     let nt = mesh.triangles.len();
@@ -75,17 +78,136 @@ pub(super) fn contact_segments(
         return Vec::new();
     }
     let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
-    let boxes: Vec<(DVec3, DVec3)> = corners
-        .iter()
-        .map(|c| {
-            let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(tol);
-            let hi = c[0].max(c[1]).max(c[2]) + DVec3::splat(tol);
-            (lo, hi)
-        })
-        .collect();
+    let boxes: Vec<(DVec3, DVec3)> = corners.iter().map(|c| box_of(c, tol)).collect();
     let grid = BoxGrid::build(&boxes, tol);
-    let pairs = meeting_pairs(mesh, welded, tri_face, &corners, &boxes, &grid, tol);
+    let found = Found {
+        mesh,
+        welded,
+        tri_face,
+        group,
+        corners: &corners,
+        boxes: &boxes,
+        tol,
+    };
+    let pairs = meeting_pairs(&found, &grid);
     join_pieces(&pairs, &corners, tri_face, tol)
+}
+
+/// A triangle's box widened by `tol` (m).
+#[inline]
+fn box_of(c: &[DVec3; 3], tol: f64) -> (DVec3, DVec3) {
+    let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(tol);
+    let hi = c[0].max(c[1]).max(c[2]) + DVec3::splat(tol);
+    (lo, hi)
+}
+
+/// Per group of triangles that move as one (the body, each articulated link): where its
+/// triangles meet another group's, found anew for each pose without the pairs inside a
+/// group. The body's grid is built once: it does not move.
+pub(super) struct Across {
+    /// Per group: its triangles (mesh indices).
+    members: Vec<Vec<u32>>,
+    /// The body's (group 0's) boxes, widened by the tolerance they were built with,
+    /// binned.
+    body: Option<BoxGrid>,
+}
+
+impl Across {
+    /// `group`: per triangle, its group (0 the body, which never moves, then the links);
+    /// `groups`: how many.
+    pub fn build(mesh: &Mesh, group: &[u32], groups: usize, tol: f64) -> Across {
+        let mut members = vec![Vec::new(); groups];
+        for (t, &g) in group.iter().enumerate() {
+            members[g as usize].push(t as u32);
+        }
+        let body = (groups > 1 && !members[0].is_empty()).then(|| {
+            let boxes: Vec<_> = members[0]
+                .iter()
+                .map(|&t| box_of(&mesh.corners(t as usize), tol))
+                .collect();
+            BoxGrid::build(&boxes, tol)
+        });
+        Across { members, body }
+    }
+
+    /// The contacts between triangles of two groups, `corners` (per triangle, m) posed
+    /// (the body's as built), as [`contact_segments`] finds them on the posed mesh:
+    /// the same pairs (their boxes widened by `tol` overlap, they meet) and segments.
+    /// No two groups may share a vertex.
+    pub fn contacts(
+        &self,
+        corners: &[[DVec3; 3]],
+        tri_face: &[u32],
+        tol: f64,
+    ) -> Vec<(u32, Contact)> {
+        let ng = self.members.len();
+        let mut pairs = Vec::new();
+        let mut stamp: Vec<u32> = Vec::new();
+        for g in 0..ng {
+            for h in g + 1..ng {
+                // the smaller group's triangles asked against the larger's grid: the
+                // body's as built, a link's binned for this pose
+                let (small, large) = if g == 0 || self.members[h].len() <= self.members[g].len() {
+                    (h, g)
+                } else {
+                    (g, h)
+                };
+                let (a, b) = (&self.members[small], &self.members[large]);
+                if a.is_empty() || b.is_empty() {
+                    continue;
+                }
+                let built;
+                let grid = match (&self.body, large) {
+                    (Some(grid), 0) => grid,
+                    _ => {
+                        let boxes: Vec<_> = b
+                            .iter()
+                            .map(|&t| box_of(&corners[t as usize], tol))
+                            .collect();
+                        built = BoxGrid::build(&boxes, tol);
+                        &built
+                    }
+                };
+                stamp.clear();
+                stamp.resize(b.len(), u32::MAX);
+                for &s in a {
+                    let bs = box_of(&corners[s as usize], tol);
+                    // what a box binned within `tol` of it can share a cell with
+                    let ask = (bs.0 - DVec3::splat(tol), bs.1 + DVec3::splat(tol));
+                    for c in grid.cells_of(ask) {
+                        for &k in grid.in_cell(grid.linear(c)) {
+                            if std::mem::replace(&mut stamp[k as usize], s) == s {
+                                continue;
+                            }
+                            let t = b[k as usize];
+                            let bt = box_of(&corners[t as usize], tol);
+                            if bs.0.cmpgt(bt.1).any() || bt.0.cmpgt(bs.1).any() {
+                                continue;
+                            }
+                            let (lo, hi) = (s.min(t), s.max(t));
+                            let (cl, ch) = (&corners[lo as usize], &corners[hi as usize]);
+                            if let Some(seg) = meet(cl, ch, tol) {
+                                pairs.push((lo, hi, seg));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        join_pieces(&pairs, corners, tri_face, tol)
+    }
+}
+
+/// What [`meeting_pairs`] looks through: the mesh, its welded ids, each triangle's face
+/// and group (pairs only within one, when given), corners and boxes (widened by `tol`).
+struct Found<'a> {
+    mesh: &'a Mesh,
+    welded: &'a [u32],
+    tri_face: &'a [u32],
+    group: Option<&'a [u32]>,
+    corners: &'a [[DVec3; 3]],
+    boxes: &'a [(DVec3, DVec3)],
+    tol: f64,
 }
 
 /// The triangles' boxes binned in a uniform grid of cells.
@@ -189,15 +311,16 @@ impl BoxGrid {
 
 /// Every pair of triangles (lower index first) of different faces, sharing no welded
 /// vertex, that meet, with the segment where they do.
-fn meeting_pairs(
-    mesh: &Mesh,
-    welded: &[u32],
-    tri_face: &[u32],
-    corners: &[[DVec3; 3]],
-    boxes: &[(DVec3, DVec3)],
-    grid: &BoxGrid,
-    tol: f64,
-) -> Vec<(u32, u32, (DVec3, DVec3))> {
+fn meeting_pairs(found: &Found, grid: &BoxGrid) -> Vec<(u32, u32, (DVec3, DVec3))> {
+    let Found {
+        mesh,
+        welded,
+        tri_face,
+        group,
+        corners,
+        boxes,
+        tol,
+    } = *found;
     let nt = boxes.len();
     // each pair sharing a cell is tested once, by the triangle of the two that spans fewer
     // cells (a large panel's triangle is found by the small ones in its cells, instead of
@@ -222,7 +345,7 @@ fn meeting_pairs(
                 let mut found = Vec::new();
                 for &t in near.iter() {
                     let t = t as usize;
-                    if tri_face[s] == tri_face[t] {
+                    if tri_face[s] == tri_face[t] || group.is_some_and(|g| g[s] != g[t]) {
                         continue;
                     }
                     let (bs, bt) = (boxes[s], boxes[t]);

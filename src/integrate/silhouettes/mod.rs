@@ -49,6 +49,7 @@ mod folds;
 mod lines;
 mod patches;
 mod polygons;
+pub mod posed;
 mod rays;
 mod topology;
 
@@ -103,25 +104,49 @@ pub struct Scratch {
     polygon: Vec<DVec2>,
 }
 
+/// Per triangle its face, and per face whether its material is two-sided.
+fn face_tables(scene: &Scene, faces: &Faces) -> (Vec<u32>, Vec<bool>) {
+    let mut tri_face = vec![0u32; scene.mesh.triangles.len()];
+    for (i, f) in faces.faces.iter().enumerate() {
+        for &t in &f.triangles {
+            tri_face[t as usize] = i as u32;
+        }
+    }
+    let two_sided = faces
+        .faces
+        .iter()
+        .map(|f| scene.materials[f.material as usize].two_sided)
+        .collect();
+    (tri_face, two_sided)
+}
+
+/// Height (m) above a face that counts as in front of it in `mesh`: rounding, not
+/// geometry.
+fn eps_of(mesh: &Mesh) -> f64 {
+    let (_, scale) = mesh.bounding_sphere();
+    1e-9 * scale
+}
+
 impl<'a> Silhouettes<'a> {
     pub fn build(scene: &'a Scene, faces: &Faces) -> Silhouettes<'a> {
         let mesh = &scene.mesh;
-        let mut tri_face = vec![0u32; mesh.triangles.len()];
-        for (i, f) in faces.faces.iter().enumerate() {
-            for &t in &f.triangles {
-                tri_face[t as usize] = i as u32;
-            }
-        }
-        let two_sided: Vec<bool> = faces
-            .faces
-            .iter()
-            .map(|f| scene.materials[f.material as usize].two_sided)
-            .collect();
-        let (_, scale) = mesh.bounding_sphere();
-        let eps = 1e-9 * scale;
+        let (tri_face, two_sided) = face_tables(scene, faces);
+        let eps = eps_of(mesh);
         let topo = Topology::build(mesh, faces, &tri_face, &two_sided, eps);
         let polys = Polygons::build(mesh, faces, two_sided);
         let patches = Patches::build(&polys, &topo);
+        Silhouettes::assemble(mesh, faces, polys, topo, patches, eps)
+    }
+
+    /// The silhouettes from their parts: the rays' hierarchy built over the polygons.
+    fn assemble(
+        mesh: &'a Mesh,
+        faces: &Faces,
+        polys: Polygons,
+        topo: Topology,
+        patches: Patches,
+        eps: f64,
+    ) -> Silhouettes<'a> {
         let rays = Rays::build(&polys, &topo.open);
         let mut triangles_at = vec![0u32];
         let mut triangles = Vec::with_capacity(mesh.triangles.len());

@@ -2,8 +2,9 @@
 //!
 //! ```text
 //! epochs ──angles per hinge (law: Sun, fixed, series)──▶ groups of identical angles
-//! each group (rayon): reference mesh posed ──▶ Prepared (faces, convexity, silhouettes)
-//!                     ──▶ its epochs evaluated as a rigid mesh's
+//! once: Shared (faces merged within each part, silhouettes' structure per part)
+//! each group (rayon): mesh posed ──▶ Prepared (Shared moved, contacts across parts,
+//!                     rays)  ──▶ its epochs evaluated as a rigid mesh's
 //! ```
 //!
 //! A pose is a rigid mesh: shadows cast and received follow the parts. Epochs whose

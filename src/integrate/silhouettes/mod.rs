@@ -14,7 +14,8 @@
 //! Built once per request: the faces as convex polygons in their planes ([`polygons`]),
 //! the edges and adjacency ([`topology`]), where separate pieces meet ([`contacts`]),
 //! connected patches of faces with the cones of their normals ([`patches`]), and a
-//! hierarchy of the polygons for rays ([`rays`]).
+//! hierarchy of the polygons for rays ([`rays`]). An articulated mesh builds all but
+//! the last once per part and moves them to each pose ([`posed`]).
 //!
 //! Per epoch and direction ([`Silhouettes::prepare`]):
 //! 1. each patch's cone says whether it faces along d, away, or both ways;

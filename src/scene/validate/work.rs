@@ -122,7 +122,8 @@ mod tests {
         ] });
         let e = check_with(hinge(series), &limits).unwrap_err();
         assert!(
-            e.message.contains("2 triangles × 1 epochs × 1.5 (each epoch a pose")
+            e.message
+                .contains("2 triangles × 1 epochs × 1.5 (each epoch a pose")
                 && e.message.contains("= 3 triangle-epochs (limit 2)"),
             "{e}"
         );

@@ -61,7 +61,6 @@ fn simulate_box_wing_to_csv() {
         "scenes/box-wing.json",
         "--out",
         out.to_str().unwrap(),
-        "-q",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let summary = String::from_utf8_lossy(&o.stdout);
@@ -69,6 +68,16 @@ fn simulate_box_wing_to_csv() {
         summary.contains("epochs") && summary.contains("mag"),
         "summary: {summary}"
     );
+    // quiet: nothing but errors
+    let o = run(&[
+        "simulate",
+        "scenes/box-wing.json",
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(o.stdout.is_empty() && o.stderr.is_empty(), "{o:?}");
     let csv = std::fs::read_to_string(&out).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();

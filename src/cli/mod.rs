@@ -64,7 +64,7 @@ pub struct SimulateArgs {
     /// Write a plot of magnitude against time (SVG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
-    /// No progress bar.
+    /// Print nothing but errors: no progress bar, no summary.
     #[arg(long, short)]
     pub quiet: bool,
     /// Write the thumbnails as PNG files into this directory (`epoch-00010.png`, …):

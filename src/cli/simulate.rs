@@ -70,6 +70,14 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
         std::fs::write(plot, svg).with_context(|| format!("cannot write {}", plot.display()))?;
     }
 
+    if !args.quiet {
+        print_summary(args, &response);
+    }
+    Ok(())
+}
+
+/// The summary on standard output: epochs, timing, magnitudes, method, files written.
+fn print_summary(args: &SimulateArgs, response: &crate::scene::Response) {
     let s = &response.summary;
     let mags: Vec<f64> = response.epochs.iter().filter_map(|e| e.magnitude).collect();
     let brightest = mags.iter().copied().fold(f64::INFINITY, f64::min);
@@ -102,7 +110,6 @@ pub fn run(args: &SimulateArgs) -> anyhow::Result<()> {
             println!("{what}: {}", p.display());
         }
     }
-    Ok(())
 }
 
 /// Writes each thumbnail as `DIR/epoch-NNNNN.png` (NNNNN: the epoch index).

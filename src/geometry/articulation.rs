@@ -88,6 +88,15 @@ impl Motion {
         self.rot * v + self.shift
     }
 
+    /// The motion that undoes this one.
+    pub fn inverse(&self) -> Motion {
+        let rot = self.rot.transpose();
+        Motion {
+            rot,
+            shift: -(rot * self.shift),
+        }
+    }
+
     /// `self` after `inner`: v ↦ self(inner(v)).
     fn after(&self, inner: &Motion) -> Motion {
         Motion {
@@ -161,12 +170,18 @@ impl Articulation {
         self.motions(t, sun).0
     }
 
-    /// The mesh's vertices (`reference`, the mesh as validated) posed at these angles.
-    pub fn pose(&self, reference: &[DVec3], angles: &[f64]) -> Vec<DVec3> {
+    /// Each joint's link's motion (reference pose → body frame) at these angles.
+    pub fn motions_at(&self, angles: &[f64]) -> Vec<Motion> {
         let mut motions: Vec<Motion> = Vec::with_capacity(self.joints.len());
         for (j, &a) in self.joints.iter().zip(angles) {
             motions.push(j.motion(parent_motion(j, &motions), a));
         }
+        motions
+    }
+
+    /// The mesh's vertices (`reference`, the mesh as validated) posed at these angles.
+    pub fn pose(&self, reference: &[DVec3], angles: &[f64]) -> Vec<DVec3> {
+        let motions = self.motions_at(angles);
         reference
             .iter()
             .zip(self.link.iter().zip(&self.on_hinge))

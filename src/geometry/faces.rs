@@ -4,6 +4,7 @@
 //! f·E·cosθi·cosθr·A with no sampling; per-epoch work then scales with faces, not
 //! triangles (a subdivided box side is one face).
 
+use super::articulation::Motion;
 use super::mesh::Mesh;
 use super::union_find::{find, union};
 use glam::DVec3;
@@ -72,6 +73,13 @@ impl Faces {
     /// Groups triangles that share an edge (by vertex position), lie in one plane and
     /// use one material. `merge = false` keeps one face per triangle.
     pub fn build(mesh: &Mesh, merge: bool) -> Faces {
+        Faces::build_within(mesh, merge, None)
+    }
+
+    /// [`Faces::build`], sharing edges only between vertices of one `group` (per vertex,
+    /// [`Mesh::welded_ids_within`]) when given: no face spans two groups, and the kept
+    /// welded edges join no two groups.
+    pub fn build_within(mesh: &Mesh, merge: bool, group: Option<&[u32]>) -> Faces {
         let n = mesh.triangles.len();
         let (_, scale) = mesh.bounding_sphere();
         let plane_tol = 1e-9 * scale.max(1e-300);
@@ -84,7 +92,7 @@ impl Faces {
         if merge {
             // Weld vertices by exact position so meshes with split vertices still merge;
             // the triangles sharing an edge are side by side in `edges`.
-            let (canon, edges) = mesh.welded_edges();
+            let (canon, edges) = mesh.welded_edges_within(group);
             for shared in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
                 let o = shared[0].2 as usize;
                 for &(_, _, t) in &shared[1..] {
@@ -148,6 +156,34 @@ impl Faces {
 
     pub fn len(&self) -> usize {
         self.faces.len()
+    }
+
+    /// The faces moved rigidly, each by `motion(face)` (normals turned, centroids
+    /// moved; areas, radii and triangles kept), tangents taken again from `axis(material)`
+    /// as [`Faces::set_tangents`] does. The welded ids and edges are kept: they stay
+    /// right for the moved mesh as long as no two vertices that were apart meet.
+    pub fn moved(&self, motion: impl Fn(usize) -> Motion, axis: impl Fn(u32) -> DVec3) -> Faces {
+        let faces = self
+            .faces
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                let m = motion(i);
+                let normal = m.rot * f.normal;
+                Face {
+                    normal,
+                    tangent: tangent_of(normal, axis(f.material)),
+                    centroid: m.apply(f.centroid),
+                    triangles: f.triangles.clone(),
+                    ..*f
+                }
+            })
+            .collect();
+        Faces {
+            faces,
+            welded: self.welded.clone(),
+            edges: self.edges.clone(),
+        }
     }
 
     pub fn is_empty(&self) -> bool {

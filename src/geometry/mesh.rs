@@ -30,18 +30,27 @@ impl Mesh {
     /// For each vertex, the first vertex at exactly the same position: ids that let meshes
     /// with split vertices (as OBJ exporters often write them) still share their edges.
     pub fn welded_ids(&self) -> Vec<u32> {
+        self.welded_ids_within(None)
+    }
+
+    /// [`Mesh::welded_ids`], welding only vertices of one group when `group` (per
+    /// vertex) is given: parts that move apart (articulated links) never share an edge.
+    pub fn welded_ids_within(&self, group: Option<&[u32]>) -> Vec<u32> {
         // sorted by position, then index: each run of one position starts with its first
-        let mut keyed: Vec<([u64; 3], u32)> = self
+        let mut keyed: Vec<([u64; 3], u32, u32)> = self
             .vertices
             .iter()
             .enumerate()
-            .map(|(i, v)| ([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()], i as u32))
+            .map(|(i, v)| {
+                let g = group.map_or(0, |g| g[i]);
+                ([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()], g, i as u32)
+            })
             .collect();
         keyed.par_sort_unstable();
         let mut ids = vec![0u32; keyed.len()];
-        for run in keyed.chunk_by(|a, b| a.0 == b.0) {
-            for &(_, i) in run {
-                ids[i as usize] = run[0].1;
+        for run in keyed.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
+            for &(_, _, i) in run {
+                ids[i as usize] = run[0].2;
             }
         }
         ids
@@ -52,7 +61,13 @@ impl Mesh {
     /// side by side, the first of them first (a sort, not a hash map: no allocation per
     /// edge, and in parallel).
     pub fn welded_edges(&self) -> (Vec<u32>, Vec<(u32, u32, u32)>) {
-        let welded = self.welded_ids();
+        self.welded_edges_within(None)
+    }
+
+    /// [`Mesh::welded_edges`] with vertices welded only within their `group`
+    /// ([`Mesh::welded_ids_within`]).
+    pub fn welded_edges_within(&self, group: Option<&[u32]>) -> (Vec<u32>, Vec<(u32, u32, u32)>) {
+        let welded = self.welded_ids_within(group);
         let mut edges = Vec::with_capacity(3 * self.triangles.len());
         for (t, tri) in self.triangles.iter().enumerate() {
             for k in 0..3 {

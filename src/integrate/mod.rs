@@ -91,76 +91,106 @@ impl<'a> Prepared<'a> {
         let mut faces = Faces::build(&scene.mesh, !per_triangle);
         faces.set_tangents(|m| scene.materials[m as usize].tangent);
         faces.sort_spatially();
-        let two_sided = faces
-            .faces
-            .iter()
-            .any(|f| scene.materials[f.material as usize].two_sided);
-        let convex = if two_sided {
-            convex::is_planar(&scene.mesh)
-        } else {
-            convex::is_convex(&scene.mesh, &faces)
+        let convex = is_convex(scene, &faces);
+        let occlusion = match scene.method {
+            Method::Adaptive => Occlusion::PerFace(Box::new(Visibility::build(
+                scene,
+                &faces,
+                VisibilityMode::Adaptive,
+            ))),
+            Method::Centroid => Occlusion::PerFace(Box::new(Visibility::build(
+                scene,
+                &faces,
+                VisibilityMode::Centroid,
+            ))),
+            Method::Image => {
+                Occlusion::Image(Box::new(self::image::ImageView::build(scene, &faces)))
+            }
+            Method::Silhouette => {
+                Occlusion::Silhouettes(Box::new(silhouettes::Silhouettes::build(scene, &faces)))
+            }
+            Method::Auto if !convex => {
+                Occlusion::Silhouettes(Box::new(silhouettes::Silhouettes::build(scene, &faces)))
+            }
+            Method::Auto | Method::Convex => Occlusion::None,
         };
-        let (visibility, method) = match scene.method {
-            Method::Convex => (None, "convex: back-face culling only, no rays (as requested)".to_string()),
-            Method::Auto if convex => (
-                None,
-                "auto → convex: the mesh is convex, so no face can shadow or hide another; no rays".to_string(),
-            ),
-            Method::Auto | Method::Silhouette => (
-                None,
-                format!(
-                    "{}silhouette: {} faces from {} triangles; per direction, faces no shadow edge crosses \
-                     decided by one ray per connected group, crossed faces cut exactly along the shadow lines",
-                    if scene.method == Method::Auto { "auto → " } else { "" },
-                    faces.len(),
-                    scene.mesh.triangles.len(),
-                ),
-            ),
-            Method::Adaptive => (
-                Some(Visibility::build(scene, &faces, VisibilityMode::Adaptive)),
-                format!(
-                    "{}adaptive: {} faces from {} triangles; faces an occluder may touch {}",
-                    if scene.method == Method::Auto { "auto → " } else { "" },
-                    faces.len(),
-                    scene.mesh.triangles.len(),
-                    if scene.clip_shadows {
-                        format!("are clipped exactly (ray-sampled to tolerance {:e} where shadows cut one too finely)", scene.tolerance)
-                    } else {
-                        format!("are ray-sampled to tolerance {:e}", scene.tolerance)
-                    }
-                ),
-            ),
-            Method::Centroid => (
-                Some(Visibility::build(scene, &faces, VisibilityMode::Centroid)),
-                "centroid: one ray per direction at each triangle's centroid (all lit or all dark)".to_string(),
-            ),
-            Method::Image => (
-                None,
-                format!(
-                    "image: orthographic view from the observer, {0}x{0} pixels, {1}x{1} samples each, shadow rays per hit",
-                    scene.image_size, scene.image_samples
-                ),
-            ),
-        };
-        let occlusion = if let Some(v) = visibility {
-            Occlusion::PerFace(Box::new(v))
-        } else if scene.method == Method::Image {
-            Occlusion::Image(Box::new(self::image::ImageView::build(scene, &faces)))
-        } else if scene.method == Method::Silhouette || (scene.method == Method::Auto && !convex) {
-            Occlusion::Silhouettes(Box::new(silhouettes::Silhouettes::build(scene, &faces)))
-        } else {
-            Occlusion::None
-        };
-        let ill = &scene.illumination;
-        let method = format!("{method}; {}", light_model_note(scene));
+        Prepared::from_parts(scene, faces, convex, occlusion)
+    }
+
+    /// A preparation from its parts, its method described.
+    pub fn from_parts(
+        scene: &'a Scene,
+        faces: Faces,
+        convex: bool,
+        occlusion: Occlusion<'a>,
+    ) -> Prepared<'a> {
+        let method = format!(
+            "{}; {}",
+            method_note(scene, &faces, convex),
+            light_model_note(scene)
+        );
         Prepared {
             scene,
             faces,
             convex,
             occlusion,
-            sun_band_1au: ill.sun_1au_w_m2,
+            sun_band_1au: scene.illumination.sun_1au_w_m2,
             method,
         }
+    }
+}
+
+/// Whether no face of the scene's mesh can shadow or hide another: a planar mesh when
+/// any face is two-sided, else a convex one.
+pub fn is_convex(scene: &Scene, faces: &Faces) -> bool {
+    let two_sided = faces
+        .faces
+        .iter()
+        .any(|f| scene.materials[f.material as usize].two_sided);
+    if two_sided {
+        convex::is_planar(&scene.mesh)
+    } else {
+        convex::is_convex(&scene.mesh, faces)
+    }
+}
+
+/// What was chosen and why, for `summary.method` (the light model apart).
+fn method_note(scene: &Scene, faces: &Faces, convex: bool) -> String {
+    let auto = if scene.method == Method::Auto {
+        "auto → "
+    } else {
+        ""
+    };
+    match scene.method {
+        Method::Convex => "convex: back-face culling only, no rays (as requested)".to_string(),
+        Method::Auto if convex => {
+            "auto → convex: the mesh is convex, so no face can shadow or hide another; no rays"
+                .to_string()
+        }
+        Method::Auto | Method::Silhouette => format!(
+            "{auto}silhouette: {} faces from {} triangles; per direction, faces no shadow edge crosses \
+             decided by one ray per connected group, crossed faces cut exactly along the shadow lines",
+            faces.len(),
+            scene.mesh.triangles.len(),
+        ),
+        Method::Adaptive => format!(
+            "{auto}adaptive: {} faces from {} triangles; faces an occluder may touch {}",
+            faces.len(),
+            scene.mesh.triangles.len(),
+            if scene.clip_shadows {
+                format!("are clipped exactly (ray-sampled to tolerance {:e} where shadows cut one too finely)", scene.tolerance)
+            } else {
+                format!("are ray-sampled to tolerance {:e}", scene.tolerance)
+            }
+        ),
+        Method::Centroid => {
+            "centroid: one ray per direction at each triangle's centroid (all lit or all dark)"
+                .to_string()
+        }
+        Method::Image => format!(
+            "image: orthographic view from the observer, {0}x{0} pixels, {1}x{1} samples each, shadow rays per hit",
+            scene.image_size, scene.image_samples
+        ),
     }
 }
 

@@ -265,7 +265,38 @@ impl Thumbnails {
 /// Default samples per pixel side of a thumbnail (3×3 stratified).
 pub const DEFAULT_THUMBNAIL_SAMPLES: u32 = 3;
 
+/// What an epoch of an articulated scene costs, in epochs of the same mesh held rigid:
+/// with a hinge whose angle changes (Sun-tracking, a series) each epoch may be a pose of
+/// its own, prepared anew. That preparation is ~0.4 of a rigid epoch where the parts'
+/// structure is shared (`auto`, `silhouette`, `convex`) and ~2.5 where each pose is
+/// prepared whole (the box-wing, docs/performance.md, 2026-12-04); counted here as 0.5
+/// and 2.5 more.
+pub fn epoch_work(
+    articulation: Option<&crate::geometry::articulation::Articulation>,
+    method: Method,
+) -> f64 {
+    use crate::geometry::articulation::JointLaw;
+    let Some(a) = articulation else {
+        return 1.0;
+    };
+    if a.joints
+        .iter()
+        .all(|j| matches!(j.law, JointLaw::Fixed { .. }))
+    {
+        return 1.0;
+    }
+    match method {
+        Method::Auto | Method::Silhouette | Method::Convex => 1.5,
+        Method::Adaptive | Method::Centroid | Method::Image => 3.5,
+    }
+}
+
 impl Scene {
+    /// What one epoch costs, in epochs of the mesh held rigid ([`epoch_work`]).
+    pub fn epoch_work(&self) -> f64 {
+        epoch_work(self.articulation.as_ref(), self.method)
+    }
+
     /// Parses and validates request JSON text. The error names the offending field.
     pub fn from_json(text: &str, limits: &Limits) -> Result<Scene, ValidationError> {
         let request = validate::parse_request(text)?;

@@ -65,10 +65,13 @@ impl Contact {
 
 /// Segments (m) where triangles of different faces that share no vertex meet: each is
 /// recorded on both faces. Found through grids of the triangles' boxes ([`LevelGrid`]).
+/// With `group` (per triangle), only triangles of one group are paired: the contacts that
+/// a rigid motion of each group carries along ([`Across`] finds the others).
 pub(super) fn contact_segments(
     mesh: &Mesh,
     welded: &[u32],
     tri_face: &[u32],
+    group: Option<&[u32]>,
     tol: f64,
 ) -> Vec<(u32, Contact)> {
     let nt = mesh.triangles.len();
@@ -76,19 +79,137 @@ pub(super) fn contact_segments(
         return Vec::new();
     }
     let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
-    let boxes: Vec<(DVec3, DVec3)> = corners
-        .iter()
-        .map(|c| {
-            let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(tol);
-            let hi = c[0].max(c[1]).max(c[2]) + DVec3::splat(tol);
-            (lo, hi)
-        })
-        .collect();
+    let boxes: Vec<(DVec3, DVec3)> = corners.iter().map(|c| box_of(c, tol)).collect();
     let grid = LevelGrid::build(&boxes, tol);
-    let mut pairs = meeting_pairs(mesh, welded, tri_face, &corners, &boxes, &grid, tol);
+    let found = Found {
+        mesh,
+        welded,
+        tri_face,
+        group,
+        corners: &corners,
+        boxes: &boxes,
+        tol,
+    };
+    let mut pairs = meeting_pairs(&found, &grid);
     // in one order whatever found them: a face's pieces are joined from the first one on
     pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
     join_pieces(&pairs, &corners, tri_face, tol)
+}
+
+/// A triangle's box widened by `tol` (m).
+#[inline]
+fn box_of(c: &[DVec3; 3], tol: f64) -> (DVec3, DVec3) {
+    let lo = c[0].min(c[1]).min(c[2]) - DVec3::splat(tol);
+    let hi = c[0].max(c[1]).max(c[2]) + DVec3::splat(tol);
+    (lo, hi)
+}
+
+/// Per group of triangles that move as one (the body, each articulated link): where its
+/// triangles meet another group's, found anew for each pose without the pairs inside a
+/// group. The body's grid is built once: it does not move.
+pub(super) struct Across {
+    /// Per group: its triangles (mesh indices).
+    members: Vec<Vec<u32>>,
+    /// The body's (group 0's) boxes, widened by the tolerance they were built with,
+    /// binned.
+    body: Option<LevelGrid>,
+}
+
+impl Across {
+    /// `group`: per triangle, its group (0 the body, which never moves, then the links);
+    /// `groups`: how many.
+    pub fn build(mesh: &Mesh, group: &[u32], groups: usize, tol: f64) -> Across {
+        let mut members = vec![Vec::new(); groups];
+        for (t, &g) in group.iter().enumerate() {
+            members[g as usize].push(t as u32);
+        }
+        let body = (groups > 1 && !members[0].is_empty()).then(|| {
+            let boxes: Vec<_> = members[0]
+                .iter()
+                .map(|&t| box_of(&mesh.corners(t as usize), tol))
+                .collect();
+            LevelGrid::build(&boxes, tol)
+        });
+        Across { members, body }
+    }
+
+    /// The contacts between triangles of two groups, `corners` (per triangle, m) posed
+    /// (the body's as built), as [`contact_segments`] finds them on the posed mesh:
+    /// the same pairs (their boxes widened by `tol` overlap, they meet) and segments.
+    /// No two groups may share a vertex.
+    pub fn contacts(
+        &self,
+        corners: &[[DVec3; 3]],
+        tri_face: &[u32],
+        tol: f64,
+    ) -> Vec<(u32, Contact)> {
+        let ng = self.members.len();
+        let mut pairs = Vec::new();
+        let mut stamp: Vec<u32> = Vec::new();
+        for g in 0..ng {
+            for h in g + 1..ng {
+                // the smaller group's triangles asked against the larger's grid: the
+                // body's as built, a link's binned for this pose
+                let (small, large) = if g == 0 || self.members[h].len() <= self.members[g].len() {
+                    (h, g)
+                } else {
+                    (g, h)
+                };
+                let (a, b) = (&self.members[small], &self.members[large]);
+                if a.is_empty() || b.is_empty() {
+                    continue;
+                }
+                let built;
+                let grid = match (&self.body, large) {
+                    (Some(grid), 0) => grid,
+                    _ => {
+                        let boxes: Vec<_> = b
+                            .iter()
+                            .map(|&t| box_of(&corners[t as usize], tol))
+                            .collect();
+                        built = LevelGrid::build(&boxes, tol);
+                        &built
+                    }
+                };
+                stamp.clear();
+                stamp.resize(b.len(), u32::MAX);
+                for &s in a {
+                    let bs = box_of(&corners[s as usize], tol);
+                    // what a box binned within `tol` of it can share a cell with
+                    let ask = (bs.0 - DVec3::splat(tol), bs.1 + DVec3::splat(tol));
+                    grid.overlapping(ask, |k| {
+                        if std::mem::replace(&mut stamp[k as usize], s) == s {
+                            return;
+                        }
+                        let t = b[k as usize];
+                        let bt = box_of(&corners[t as usize], tol);
+                        if bs.0.cmpgt(bt.1).any() || bt.0.cmpgt(bs.1).any() {
+                            return;
+                        }
+                        let (lo, hi) = (s.min(t), s.max(t));
+                        let (cl, ch) = (&corners[lo as usize], &corners[hi as usize]);
+                        if let Some(seg) = meet(cl, ch, tol) {
+                            pairs.push((lo, hi, seg));
+                        }
+                    });
+                }
+            }
+        }
+        pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
+        join_pieces(&pairs, corners, tri_face, tol)
+    }
+}
+
+/// What [`meeting_pairs`] looks through: the mesh, its welded ids, each triangle's face
+/// and group (pairs only within one, when given), corners and boxes (widened by `tol`).
+struct Found<'a> {
+    mesh: &'a Mesh,
+    welded: &'a [u32],
+    tri_face: &'a [u32],
+    group: Option<&'a [u32]>,
+    corners: &'a [[DVec3; 3]],
+    boxes: &'a [(DVec3, DVec3)],
+    tol: f64,
 }
 
 /// The triangles' boxes binned in grids of cells at levels of doubling size, each
@@ -225,19 +346,35 @@ impl LevelGrid {
             }
         });
     }
+
+    /// Calls `each` with every binned triangle whose cell at its level box `b` touches
+    /// (at least all whose boxes overlap `b`; some more than once). A level where `b`
+    /// spans more cells than are occupied is read whole instead of cell by cell.
+    fn overlapping(&self, b: (DVec3, DVec3), mut each: impl FnMut(u32)) {
+        for (k, level) in self.levels.iter().enumerate() {
+            let side = self.cell * (1u64 << k) as f64;
+            let span = ((b.1 - b.0) / side + DVec3::splat(2.0)).element_product();
+            if span > level.index.len() as f64 {
+                level.binned.iter().for_each(|&t| each(t));
+            } else {
+                self.near(b, k as u8, &mut each);
+            }
+        }
+    }
 }
 
 /// Every pair of triangles (lower index first) of different faces, sharing no welded
 /// vertex, that meet, with the segment where they do.
-fn meeting_pairs(
-    mesh: &Mesh,
-    welded: &[u32],
-    tri_face: &[u32],
-    corners: &[[DVec3; 3]],
-    boxes: &[(DVec3, DVec3)],
-    grid: &LevelGrid,
-    tol: f64,
-) -> Vec<(u32, u32, (DVec3, DVec3))> {
+fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec3))> {
+    let Found {
+        mesh,
+        welded,
+        tri_face,
+        group,
+        corners,
+        boxes,
+        tol,
+    } = *found;
     let nt = boxes.len();
     // each pair is tested once: by its triangle at the finer level, which looks at its
     // own level and every coarser one (at most 8 cells each), or at one level by the
@@ -261,7 +398,7 @@ fn meeting_pairs(
                 let mut found = Vec::new();
                 for &t in near.iter() {
                     let t = t as usize;
-                    if tri_face[s] == tri_face[t] {
+                    if tri_face[s] == tri_face[t] || group.is_some_and(|g| g[s] != g[t]) {
                         continue;
                     }
                     let (bs, bt) = (boxes[s], boxes[t]);
@@ -483,7 +620,16 @@ mod tests {
             .collect();
         let grid = LevelGrid::build(&boxes, tol);
         assert!(grid.levels.len() > 5, "{} levels", grid.levels.len());
-        let mut found = meeting_pairs(&mesh, &welded, &tri_face, &corners, &boxes, &grid, tol);
+        let at = Found {
+            mesh: &mesh,
+            welded: &welded,
+            tri_face: &tri_face,
+            group: None,
+            corners: &corners,
+            boxes: &boxes,
+            tol,
+        };
+        let mut found = meeting_pairs(&at, &grid);
         found.sort_unstable_by_key(|&(s, t, _)| (s, t));
         let truth = all_pairs(&mesh, &welded, tol);
         // the ball crosses the plate and the rod: dozens of pairs, each found once

@@ -14,7 +14,8 @@
 //! Built once per request: the faces as convex polygons in their planes ([`polygons`]),
 //! the edges and adjacency ([`topology`]), where separate pieces meet ([`contacts`]),
 //! connected patches of faces with the cones of their normals ([`patches`]), and a
-//! hierarchy of the polygons for rays ([`rays`]).
+//! hierarchy of the polygons for rays ([`rays`]). An articulated mesh builds all but
+//! the last once per part and moves them to each pose ([`posed`]).
 //!
 //! Per epoch and direction ([`Silhouettes::prepare`]):
 //! 1. each patch's cone says whether it faces along d, away, or both ways;
@@ -49,6 +50,7 @@ mod folds;
 mod lines;
 mod patches;
 mod polygons;
+pub mod posed;
 mod rays;
 mod topology;
 
@@ -103,22 +105,34 @@ pub struct Scratch {
     polygon: Vec<DVec2>,
 }
 
+/// Per triangle its face, and per face whether its material is two-sided.
+fn face_tables(scene: &Scene, faces: &Faces) -> (Vec<u32>, Vec<bool>) {
+    let mut tri_face = vec![0u32; scene.mesh.triangles.len()];
+    for (i, f) in faces.faces.iter().enumerate() {
+        for &t in &f.triangles {
+            tri_face[t as usize] = i as u32;
+        }
+    }
+    let two_sided = faces
+        .faces
+        .iter()
+        .map(|f| scene.materials[f.material as usize].two_sided)
+        .collect();
+    (tri_face, two_sided)
+}
+
+/// Height (m) above a face that counts as in front of it in `mesh`: rounding, not
+/// geometry.
+fn eps_of(mesh: &Mesh) -> f64 {
+    let (_, scale) = mesh.bounding_sphere();
+    1e-9 * scale
+}
+
 impl<'a> Silhouettes<'a> {
     pub fn build(scene: &'a Scene, faces: &Faces) -> Silhouettes<'a> {
         let mesh = &scene.mesh;
-        let mut tri_face = vec![0u32; mesh.triangles.len()];
-        for (i, f) in faces.faces.iter().enumerate() {
-            for &t in &f.triangles {
-                tri_face[t as usize] = i as u32;
-            }
-        }
-        let two_sided: Vec<bool> = faces
-            .faces
-            .iter()
-            .map(|f| scene.materials[f.material as usize].two_sided)
-            .collect();
-        let (_, scale) = mesh.bounding_sphere();
-        let eps = 1e-9 * scale;
+        let (tri_face, two_sided) = face_tables(scene, faces);
+        let eps = eps_of(mesh);
         // the topology and the polygons need only the faces, the patches and the rays
         // only those two: built two at a time
         let (topo, polys) = rayon::join(
@@ -129,6 +143,16 @@ impl<'a> Silhouettes<'a> {
             || Patches::build(&polys, &topo),
             || Rays::build(&polys, &topo.open),
         );
+        Silhouettes::assemble(mesh, faces, (polys, topo, patches, rays), eps)
+    }
+
+    /// The silhouettes from their parts.
+    fn assemble(
+        mesh: &'a Mesh,
+        faces: &Faces,
+        (polys, topo, patches, rays): (Polygons, Topology, Patches, Rays),
+        eps: f64,
+    ) -> Silhouettes<'a> {
         let mut triangles_at = vec![0u32];
         let mut triangles = Vec::with_capacity(mesh.triangles.len());
         for f in &faces.faces {

@@ -11,7 +11,7 @@
 
 use super::polygons::Polygons;
 use super::topology::{csr_of, Topology, NONE};
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 /// Most faces a patch holds.
 const MAX_FACES: usize = 16;
@@ -37,6 +37,7 @@ pub struct Link {
 }
 
 /// The patches (see the module doc).
+#[derive(Clone)]
 pub struct Patches {
     /// Per face: its patch.
     pub of_face: Vec<u32>,
@@ -100,6 +101,25 @@ impl Patches {
 
     pub fn len(&self) -> usize {
         self.axis.len()
+    }
+
+    /// The patches of the same faces moved rigidly (`polys` and `topo` moved already),
+    /// each patch's faces turned by `turn(patch)`: the cones turned, the boxes and which
+    /// patches contacts run through found again.
+    pub fn moved(
+        &self,
+        polys: &Polygons,
+        topo: &Topology,
+        turn: impl Fn(usize) -> DMat3,
+    ) -> Patches {
+        let mut p = self.clone();
+        for k in 0..self.len() {
+            let m = self.faces_of(k);
+            p.axis[k] = turn(k) * self.axis[k];
+            (p.centre[k], p.half[k]) = box_of(polys, m);
+            p.contacts[k] = m.iter().any(|&f| !topo.contacts_of(f as usize).is_empty());
+        }
+        p
     }
 
     #[inline]
@@ -223,17 +243,9 @@ impl Shapes {
             } else {
                 2.0
             });
-            let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-            for &f in m {
-                for k in polys.of(f as usize) {
-                    for &q in polys.corners3(k) {
-                        lo = lo.min(q);
-                        hi = hi.max(q);
-                    }
-                }
-            }
-            centre.push((lo + hi) * 0.5);
-            half.push((hi - lo) * 0.5);
+            let (c, h) = box_of(polys, m);
+            centre.push(c);
+            half.push(h);
             contacts.push(m.iter().any(|&f| !topo.contacts_of(f as usize).is_empty()));
             open.push(topo.open[m[0] as usize]);
         }
@@ -246,6 +258,20 @@ impl Shapes {
             open,
         }
     }
+}
+
+/// The box of faces `m`' polygons: centre and half extents (m).
+fn box_of(polys: &Polygons, m: &[u32]) -> (DVec3, DVec3) {
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    for &f in m {
+        for k in polys.of(f as usize) {
+            for &q in polys.corners3(k) {
+                lo = lo.min(q);
+                hi = hi.max(q);
+            }
+        }
+    }
+    ((lo + hi) * 0.5, (hi - lo) * 0.5)
 }
 
 /// CSR tables.

@@ -5,10 +5,12 @@
 //! own plane coordinates (its basis (u, w) from a point of it), where a face is cut
 //! along the lines of the shadows that cross it and a ray's hit is tested.
 
+use crate::geometry::articulation::Motion;
 use crate::geometry::{Faces, Mesh};
 use glam::{DVec2, DVec3};
 
 /// The faces' planes and their polygons.
+#[derive(Clone)]
 pub struct Polygons {
     /// Per face: unit normal, a point of its plane, an orthonormal basis (u, w) of the
     /// plane with u × w = n, two-sidedness, convexity (one polygon), and a point inside
@@ -113,6 +115,26 @@ impl Polygons {
 
     pub fn faces(&self) -> usize {
         self.normal.len()
+    }
+
+    /// The polygons with each face moved rigidly by `motion(face)`: the plane's basis
+    /// turns with it, so the corners' plane coordinates stay as they are.
+    pub fn moved(&self, motion: impl Fn(usize) -> Motion) -> Polygons {
+        let mut p = self.clone();
+        for f in 0..self.faces() {
+            let m = motion(f);
+            p.normal[f] = m.rot * p.normal[f];
+            p.point[f] = m.apply(p.point[f]);
+            let (u, w) = p.basis[f];
+            p.basis[f] = (m.rot * u, m.rot * w);
+            p.inside[f] = m.apply(p.inside[f]);
+            let (a, b) = self.of_face[f];
+            let (s, e) = (self.spans[a as usize].0, self.spans[b as usize - 1].1);
+            for q in &mut p.corners[s as usize..e as usize] {
+                *q = m.apply(*q);
+            }
+        }
+        p
     }
 
     pub fn len(&self) -> usize {

@@ -9,6 +9,7 @@
 //! (a contact: a boom's foot on a bus), fixed in the body frame and found here.
 
 use super::contacts::{contact_segments, Contact};
+use crate::geometry::articulation::Motion;
 use crate::geometry::union_find::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
@@ -100,6 +101,21 @@ impl Topology {
         two_sided: &[bool],
         tol: f64,
     ) -> Topology {
+        Topology::build_within(mesh, faces, tri_face, two_sided, None, tol)
+    }
+
+    /// [`Topology::build`] with the contacts found only between triangles of one `group`
+    /// (per triangle) when given: what moves with each group of an articulated mesh.
+    /// `faces` must then have been merged within the groups
+    /// ([`Faces::build_within`]): no edge joins two groups.
+    pub fn build_within(
+        mesh: &Mesh,
+        faces: &Faces,
+        tri_face: &[u32],
+        two_sided: &[bool],
+        group: Option<&[u32]>,
+        tol: f64,
+    ) -> Topology {
         // `two_sided` is per face
         // the welded edges that merging faces sorted, or sorted here when it did not
         let (welded, sorted) = faces.welded_edges(mesh);
@@ -109,13 +125,58 @@ impl Topology {
         keep_solid_valleys(&mut found, mesh, faces, &open);
         let edges = merge_in_line(&found.edges, &found.ends, &mesh.vertices);
         let (adjacent_at, adjacent) = adjacency(&edges, faces.len());
-        let contacts = contact_segments(mesh, welded, tri_face, tol);
+        let contacts = contact_segments(mesh, welded, tri_face, group, tol);
         let (contacts_at, contacts) = csr_of(faces.len(), contacts);
         Topology {
             edges,
             adjacent_at,
             adjacent,
             open,
+            contacts_at,
+            contacts,
+        }
+    }
+
+    /// The topology of the mesh with each face moved rigidly by `motion(face)` (no two
+    /// faces that met across an edge moving apart): its edges and contacts carried
+    /// along, and `more` contacts (found on the moved mesh) added.
+    pub fn moved(&self, motion: impl Fn(u32) -> Motion, more: Vec<(u32, Contact)>) -> Topology {
+        let edges = self
+            .edges
+            .iter()
+            .map(|e| {
+                let m = motion(e.f0);
+                Edge {
+                    a: m.apply(e.a),
+                    b: m.apply(e.b),
+                    in0: m.apply(e.in0),
+                    in1: m.apply(e.in1),
+                    ..*e
+                }
+            })
+            .collect();
+        let nf = self.open.len();
+        let mut contacts = Vec::with_capacity(self.contacts.len() + more.len());
+        for f in 0..nf {
+            let m = motion(f as u32);
+            for c in self.contacts_of(f) {
+                let o = motion(c.face);
+                let moved = Contact {
+                    a: m.apply(c.a),
+                    b: m.apply(c.b),
+                    other: c.other.map(|v| o.apply(v)),
+                    face: c.face,
+                };
+                contacts.push((f as u32, moved));
+            }
+        }
+        contacts.extend(more);
+        let (contacts_at, contacts) = csr_of(nf, contacts);
+        Topology {
+            edges,
+            adjacent_at: self.adjacent_at.clone(),
+            adjacent: self.adjacent.clone(),
+            open: self.open.clone(),
             contacts_at,
             contacts,
         }

@@ -78,6 +78,7 @@ pub fn validate(req: &Request, limits: &Limits) -> Result<Scene, ValidationError
         limits,
         mesh.triangles.len(),
         epochs.len(),
+        super::epoch_work(articulation.as_ref(), method),
         (method == Method::Image).then_some((image_size, image_samples)),
         thumbnails.as_ref(),
     )?;

@@ -1,26 +1,35 @@
 //! What a request would cost, estimated before any work is done, against the limits:
-//! triangles × epochs for the analytic methods, pixel samples for the rendered images.
+//! triangles × epochs for the analytic methods (an articulated scene's epochs weighed by
+//! their poses' preparation), pixel samples for the rendered images.
 
 use super::values::err;
 use super::{Limits, ValidationError};
 use crate::scene::Thumbnails;
 
 /// Refuses a request whose work, estimated before any is done, is over the limits:
-/// triangles × epochs, and the pixel samples of the `image` method (`image`: its size and
+/// triangles × epochs (× `epoch_work`, an epoch's cost in a rigid mesh's epochs:
+/// [`crate::scene::epoch_work`]), and the pixel samples of the `image` method (`image`: its size and
 /// samples per side) and of the thumbnails.
 pub(super) fn work(
     limits: &Limits,
     triangles: usize,
     epochs: usize,
+    epoch_work: f64,
     image: Option<(u32, u32)>,
     thumbnails: Option<&Thumbnails>,
 ) -> Result<(), ValidationError> {
-    let triangle_epochs = triangles as u64 * epochs as u64;
+    let rigid = triangles as u64 * epochs as u64;
+    let triangle_epochs = (rigid as f64 * epoch_work).ceil() as u64;
     if triangle_epochs > limits.max_triangle_epochs {
+        let poses = if epoch_work > 1.0 {
+            format!(" × {epoch_work} (each epoch a pose of the articulated parts, prepared anew)")
+        } else {
+            String::new()
+        };
         return err(
             "epochs",
             format!(
-                "too large a computation: {triangles} triangles × {epochs} epochs = \
+                "too large a computation: {triangles} triangles × {epochs} epochs{poses} = \
                  {triangle_epochs} triangle-epochs (limit {}); send fewer epochs, a coarser \
                  mesh, or submit it as a job",
                 limits.max_triangle_epochs
@@ -85,6 +94,39 @@ mod tests {
             "{e}"
         );
         assert!(e.is_limit());
+    }
+
+    /// An articulated scene whose angle changes prepares a pose an epoch: its epochs
+    /// weigh more (1.5 rigid epochs' work each with the silhouette method); a `fixed`
+    /// hinge is one pose, and weighs nothing more.
+    #[test]
+    fn an_epoch_of_moving_parts_counts_its_pose() {
+        let limits = Limits {
+            max_triangle_epochs: 2,
+            ..Limits::default()
+        };
+        let hinge = |law: serde_json::Value| {
+            move |v: &mut serde_json::Value| {
+                v["object"]["mesh"]["parts"] = json!([{ "name": "flap", "triangles": [1] }]);
+                let mut h = json!({ "parts": ["flap"], "axis": [1, 0, 0] });
+                for (k, x) in law.as_object().unwrap() {
+                    h[k] = x.clone();
+                }
+                v["articulation"] = json!([h]);
+            }
+        };
+        let fixed = json!({ "law": "fixed", "angle_deg": 10 });
+        assert!(check_with(hinge(fixed), &limits).is_ok());
+        let series = json!({ "law": "angles", "series": [
+            { "t": -1e9, "angle_deg": 0 }, { "t": 1e9, "angle_deg": 10 }
+        ] });
+        let e = check_with(hinge(series), &limits).unwrap_err();
+        assert!(
+            e.message
+                .contains("2 triangles × 1 epochs × 1.5 (each epoch a pose")
+                && e.message.contains("= 3 triangle-epochs (limit 2)"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -28,13 +28,15 @@ pub fn chunk_epochs(scene: &Scene, fixed: Option<usize>) -> usize {
     if let Some(f) = fixed {
         return f.clamp(1, n);
     }
-    let per_epoch = scene.mesh.triangles.len() as f64 * SECONDS_PER_TRIANGLE_EPOCH
-        + if scene.method == crate::scene::Method::Image {
-            (scene.image_size as f64 * scene.image_samples as f64).powi(2)
-                * SECONDS_PER_PIXEL_SAMPLE
-        } else {
-            0.0
-        };
+    // an articulated scene's epochs each prepare a pose ([`Scene::epoch_work`])
+    let per_epoch =
+        scene.mesh.triangles.len() as f64 * SECONDS_PER_TRIANGLE_EPOCH * scene.epoch_work()
+            + if scene.method == crate::scene::Method::Image {
+                (scene.image_size as f64 * scene.image_samples as f64).powi(2)
+                    * SECONDS_PER_PIXEL_SAMPLE
+            } else {
+                0.0
+            };
     let epochs = (TARGET_CHUNK_SECONDS / per_epoch.max(1e-9)).floor() as usize;
     epochs.clamp(1, MAX_CHUNK_EPOCHS).min(n)
 }

@@ -5,8 +5,62 @@
 
 use super::cells::area_centroid;
 use super::direction::{Direction, FaceState, PatchState};
+use super::polygons::orient;
 use super::{lines, Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
 use glam::DVec2;
+
+/// Most lines a direction may cut a face by for its ray answers to be shared between
+/// cells (a cell's side of each line is one bit of a `u64`).
+const MEMO_LINES: usize = 64;
+
+/// One direction's ray answers on one face, shared between the cells of a region.
+///
+/// On a convex face, the points on one side of each of the direction's bounding lines
+/// (their whole lines, not only their segments) make a convex region that none of its
+/// lines crosses, so they are all lit or all dark along it: one ray answers for every
+/// cell whose centroid lies there. The cells are cut by the other directions' lines
+/// too, so a face cut by the view and the Sun has more cells than either direction has
+/// regions.
+#[derive(Default)]
+pub(super) struct RayMemo {
+    /// Whether the answers are shared on this face (convex, few enough lines).
+    on: bool,
+    lines: Vec<(DVec2, DVec2)>,
+    /// (side of each line, open along the direction).
+    answers: Vec<(u64, bool)>,
+}
+
+impl RayMemo {
+    /// Readies the memo for a face whose lines along the direction are `lines`.
+    fn reset<'l>(&mut self, convex: bool, lines: impl Iterator<Item = &'l lines::Line>) {
+        self.lines.clear();
+        self.answers.clear();
+        self.lines
+            .extend(lines.filter(|l| l.bounds).map(|l| (l.p, l.q)));
+        self.on = convex && self.lines.len() <= MEMO_LINES;
+    }
+
+    /// Which side of each line `q` lies on.
+    fn sides(&self, q: DVec2) -> u64 {
+        self.lines.iter().enumerate().fold(0, |m, (i, &(a, b))| {
+            m | u64::from(orient(a, b, q) > 0.0) << i
+        })
+    }
+
+    /// The answer at `q`: remembered for its region, or `ray()`'s (then remembered).
+    fn open(&mut self, q: DVec2, ray: impl FnOnce() -> bool) -> bool {
+        if !self.on {
+            return ray();
+        }
+        let key = self.sides(q);
+        if let Some(&(_, open)) = self.answers.iter().find(|(k, _)| *k == key) {
+            return open;
+        }
+        let open = ray();
+        self.answers.push((key, open));
+        open
+    }
+}
 
 /// How one direction decides a face.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -115,9 +169,14 @@ impl Silhouettes<'_> {
             return (lit(1), lit(2), 0);
         }
         let whole = self.cut_into_cells(scratch, face, &status);
-        let (cells, dirs) = (&scratch.cells, &scratch.dirs);
+        let (cells, dirs, memo) = (&scratch.cells, &scratch.dirs, &mut scratch.memo);
+        for k in 0..3 {
+            if status[k] == Status::Rays {
+                memo[k].reset(self.polys.convex[face], dirs[k].lines_of(face).iter());
+            }
+        }
         let mut rays = 0u64;
-        let mut decide = |q: DVec2| self.decide(dirs, &status, face, q, &mut rays);
+        let mut decide = |q: DVec2| self.decide(dirs, &status, face, q, memo, &mut rays);
         let (mut a_sun, mut a_earth) = (0.0, 0.0);
         if whole {
             for i in 0..cells.len() {
@@ -185,13 +244,15 @@ impl Silhouettes<'_> {
     }
 
     /// (seen and sunlit, seen and earthlit) at point `q` of `face` (its plane's
-    /// coordinates), each direction deciding as `status` says; counts the rays cast.
+    /// coordinates), each direction deciding as `status` says (by rays where `memo` has
+    /// no answer for `q`'s region yet); counts the rays cast.
     fn decide(
         &self,
         dirs: &[Direction; 3],
         status: &[Status; 3],
         face: usize,
         q: DVec2,
+        memo: &mut [RayMemo; 3],
         rays: &mut u64,
     ) -> (bool, bool) {
         let mut open = [true; 3];
@@ -204,14 +265,14 @@ impl Silhouettes<'_> {
                     dir.face_count[face] + lines::crossed(dir.lines_of(face), dir.face_ref[face], q)
                         == 0
                 }
-                Status::Rays => {
+                Status::Rays => memo[k].open(q, || {
                     *rays += 1;
                     let d = dirs[k].across.d;
                     let x = self.polys.to3(face, q);
                     !self
                         .rays
                         .blocked(&self.polys, &self.topo.open, x, d, face as u32, self.eps)
-                }
+                }),
             };
             if k == 0 && !open[0] {
                 return (false, false);
@@ -248,5 +309,56 @@ impl Silhouettes<'_> {
             }
         }
         (a_sun, a_earth)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lines::Line;
+
+    fn line(p: (f64, f64), q: (f64, f64), bounds: bool) -> Line {
+        Line {
+            p: DVec2::new(p.0, p.1),
+            q: DVec2::new(q.0, q.1),
+            jump: 1,
+            bounds,
+        }
+    }
+
+    #[test]
+    fn a_ray_answers_for_every_cell_of_its_region_and_only_there() {
+        // two bounding lines crossing at the origin make four regions; a third line that
+        // does not bound cuts no region
+        let ls = [
+            line((-1.0, 0.0), (1.0, 0.0), true),
+            line((0.0, -1.0), (0.0, 1.0), true),
+            line((-1.0, 0.5), (1.0, 0.5), false),
+        ];
+        let mut memo = RayMemo::default();
+        memo.reset(true, ls.iter());
+        let mut rays = 0;
+        let mut ask = |memo: &mut RayMemo, x: f64, y: f64| {
+            memo.open(DVec2::new(x, y), || {
+                rays += 1;
+                x > 0.0
+            })
+        };
+        // two cells in each quadrant, on both sides of the line that does not bound
+        for (x, y) in [(0.3, 0.2), (0.3, 0.7), (-0.3, 0.2), (-0.3, 0.7)] {
+            assert_eq!(ask(&mut memo, x, y), x > 0.0);
+            assert_eq!(ask(&mut memo, x, -y), x > 0.0);
+        }
+        assert_eq!(rays, 4, "one ray a region");
+        // a face that is not convex: a region may be two pieces of it, each its own ray
+        memo.reset(false, ls.iter());
+        let mut rays = 0;
+        for _ in 0..3 {
+            memo.open(DVec2::new(0.3, 0.2), || {
+                rays += 1;
+                true
+            });
+        }
+        assert_eq!(rays, 3, "no sharing on a face that is not convex");
     }
 }

@@ -101,6 +101,8 @@ pub struct Scratch {
     patch_wanted: Vec<u8>,
     cells: Cells,
     cutter: Cutter,
+    /// Per direction: ray answers shared between a face's cells.
+    memo: [areas::RayMemo; 3],
     lines: Vec<(DVec2, DVec2)>,
     polygon: Vec<DVec2>,
 }

@@ -198,9 +198,15 @@ impl Silhouettes<'_> {
         };
         let edge = &self.topo.edges[e as usize];
         let across = &dir.across;
-        if !super::folds::same_way(&self.topo, &self.polys.normal, edge, across.d)
-            && edge.jump(across.u, across.w, |f| self.blocks(f as usize, across.d)) != 0
-        {
+        // the search for folds tested every edge that can be one, but for an edge whose
+        // triangles wind the same way along it inside a patch that faces one way
+        let fold = if edge.flipped {
+            !super::folds::same_way(&self.topo, &self.polys.normal, edge, across.d)
+                && edge.jump(across.u, across.w, |f| self.blocks(f as usize, across.d)) != 0
+        } else {
+            dir.is_fold(e)
+        };
+        if fold {
             return None;
         }
         let src_crossed = from.filter(|&f| dir.face[f as usize] == FaceState::Crossed);

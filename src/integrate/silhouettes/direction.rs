@@ -63,6 +63,10 @@ pub struct Direction {
     pub(super) face_lines: Vec<(u32, u32)>,
     pub(super) lines: Vec<Line>,
     pub(super) folds: Vec<Fold>,
+    /// Per edge: `fold_mark` when it is one of `folds` (so the flood need not test it
+    /// again).
+    pub(super) edge_mark: Vec<u32>,
+    pub(super) fold_mark: u32,
     pub(super) grid: LineGrid,
     /// Per fold: the last patch query that met it (candidates once per patch).
     pub(super) stamp: Vec<u32>,
@@ -112,6 +116,25 @@ pub(super) struct Footprint {
 }
 
 impl Direction {
+    /// Marks the edges of `folds` (on a topology of `edges` edges).
+    pub(super) fn mark_folds(&mut self, edges: usize) {
+        self.fold_mark = self.fold_mark.wrapping_add(1);
+        if self.fold_mark == 0 || self.edge_mark.len() != edges {
+            self.edge_mark.clear();
+            self.edge_mark.resize(edges, 0);
+            self.fold_mark = 1;
+        }
+        for f in &self.folds {
+            self.edge_mark[f.edge as usize] = self.fold_mark;
+        }
+    }
+
+    /// Is edge `e` one of the folds found?
+    #[inline]
+    pub(super) fn is_fold(&self, e: u32) -> bool {
+        self.edge_mark[e as usize] == self.fold_mark
+    }
+
     /// Face `f`'s lines (empty unless it is crossed).
     #[inline]
     pub(super) fn lines_of(&self, f: usize) -> &[Line] {

@@ -28,9 +28,13 @@ pub struct Fold {
     pub bounds: bool,
     /// The edge's faces (a valley's two sides, whose planes bound its notch).
     pub faces: (u32, u32),
+    /// The edge's index in the topology.
+    pub edge: u32,
 }
 
-/// Finds every fold along unit `d` (basis across it `(u, w)`, u × w = d); `facing`: each
+/// Finds every fold along unit `d` (every edge that is one, except perhaps an edge
+/// whose two triangles wind the same way along it: the search does not look inside a
+/// patch that faces one way) (basis across it `(u, w)`, u × w = d); `facing`: each
 /// patch's facing along d; `normal`: each face's unit normal; `blocks(face)`: the face's
 /// sheet counts along d.
 #[allow(clippy::too_many_arguments)]
@@ -62,6 +66,7 @@ pub fn find(
                 jump,
                 bounds: !edge.valley,
                 faces: (edge.f0, edge.f1),
+                edge: e,
             });
         }
     };

@@ -254,6 +254,7 @@ impl<'a> Silhouettes<'a> {
             |f| self.blocks(f as usize, d),
             &mut dir.folds,
         );
+        dir.mark_folds(self.topo.edges.len());
         dir.grid.build(&dir.folds, self.tol);
         dir.stamp.clear();
         dir.stamp.resize(dir.folds.len(), 0);

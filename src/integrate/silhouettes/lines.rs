@@ -38,6 +38,9 @@ pub struct LineGrid {
     start: Vec<u32>,
     items: Vec<u32>,
     fill: Vec<u32>,
+    /// Per fold, its runs of cells (first, last), found once for both passes.
+    runs: Vec<(u32, u32)>,
+    runs_at: Vec<u32>,
 }
 
 impl LineGrid {
@@ -68,13 +71,18 @@ impl LineGrid {
         self.start.clear();
         self.start.resize(cells + 1, 0);
         let (nx, ny, inv) = (self.nx, self.ny, self.inv_cell);
+        self.runs.clear();
+        self.runs_at.clear();
+        self.runs_at.push(0);
         for f in folds {
-            let start = &mut self.start;
+            let (start, runs) = (&mut self.start, &mut self.runs);
             rows_of(nx, ny, lo, inv, f, tol, |c0, c1| {
                 for c in &mut start[c0 + 1..c1 + 2] {
                     *c += 1;
                 }
+                runs.push((c0 as u32, c1 as u32));
             });
+            self.runs_at.push(self.runs.len() as u32);
         }
         for i in 0..cells {
             self.start[i + 1] += self.start[i];
@@ -83,15 +91,14 @@ impl LineGrid {
         self.fill.extend_from_slice(&self.start[..cells]);
         self.items.clear();
         self.items.resize(self.start[cells] as usize, 0);
-        for (i, f) in folds.iter().enumerate() {
-            let (fill, items) = (&mut self.fill, &mut self.items);
-            let (nx, ny, lo, inv) = (self.nx, self.ny, self.lo, self.inv_cell);
-            rows_of(nx, ny, lo, inv, f, tol, |c0, c1| {
-                for c in &mut fill[c0..c1 + 1] {
-                    items[*c as usize] = i as u32;
+        for i in 0..folds.len() {
+            let (a, b) = (self.runs_at[i] as usize, self.runs_at[i + 1] as usize);
+            for &(c0, c1) in &self.runs[a..b] {
+                for c in &mut self.fill[c0 as usize..c1 as usize + 1] {
+                    self.items[*c as usize] = i as u32;
                     *c += 1;
                 }
-            });
+            }
         }
     }
 

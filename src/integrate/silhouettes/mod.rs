@@ -23,9 +23,9 @@
 //!    between patches that face differently ([`folds`]);
 //! 3. the folds are binned across d, and each patch with faces to decide asks for the
 //!    folds above its box: a patch that faces along d and that none reaches is *clean*
-//!    (one count for all its faces); in the others each face is tested against the
-//!    folds found, and each fold that crosses it becomes a line in its plane
-//!    ([`direction`], [`lines`]);
+//!    (one count for all its faces), and so is one whose faces no fold crosses; in the
+//!    others each face is tested against the folds found, and each fold that crosses it
+//!    becomes a line in its plane ([`direction`], [`lines`]);
 //! 4. one ray counts the sheets above the first unit of each connected region, and the
 //!    count floods the rest across edges, through crossed faces by the jumps of the
 //!    lines a path crosses ([`counts`]).
@@ -34,7 +34,7 @@
 //! contacts) into convex cells ([`cells`]); a cell's count along each direction is its face's
 //! reference count plus the jumps of the lines between them: no ray. Only the cells of a
 //! face a contact runs through are decided by rays (the count does not follow the
-//! sheets there). Nothing is recognised by shape: a convex mesh has no fold above any
+//! sheets there), one per region of each direction's own lines ([`areas`]). Nothing is recognised by shape: a convex mesh has no fold above any
 //! face and is one clean region (one ray a direction); a dish, a bell in a skirt or a
 //! crumpled fragment cost what their fold lines cost. The areas are exact up to
 //! rounding (the tolerance does not enter), except on a face so many lines cross that

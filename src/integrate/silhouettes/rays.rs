@@ -61,9 +61,9 @@ impl Rays {
         let centres: Vec<DVec3> = boxes.iter().map(|b| (b.0 + b.1) * 0.5).collect();
         let mut nodes = Vec::with_capacity(2 * n / LEAF + 1);
         nodes.push(leaf(0, n));
-        // (node, start, end) still to split
-        let mut todo = vec![(0usize, 0usize, n)];
-        while let Some((i, s, e)) = todo.pop() {
+        // (node, start, end, depth) still to split
+        let mut todo = vec![(0usize, 0usize, n, 0usize)];
+        while let Some((i, s, e, depth)) = todo.pop() {
             let range = &mut prims[s..e];
             let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
             let (mut clo, mut chi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
@@ -83,26 +83,14 @@ impl Rays {
             if e - s <= LEAF {
                 continue;
             }
-            // the median along the centres' longest extent
-            let ext = chi - clo;
-            let k = if ext.x >= ext.y && ext.x >= ext.z {
-                0
-            } else if ext.y >= ext.z {
-                1
-            } else {
-                2
-            };
-            let mid = (e - s) / 2;
-            range.select_nth_unstable_by(mid, |&a, &b| {
-                centres[a as usize][k].total_cmp(&centres[b as usize][k])
-            });
+            let mid = split(range, &boxes, &centres, clo, chi, depth >= SAH_DEPTH);
             let left = nodes.len();
             nodes.push(leaf(s, s + mid));
             nodes.push(leaf(s + mid, e));
             nodes[i].start = left as u32;
             nodes[i].count = 0;
-            todo.push((left, s, s + mid));
-            todo.push((left + 1, s + mid, e));
+            todo.push((left, s, s + mid, depth + 1));
+            todo.push((left + 1, s + mid, e, depth + 1));
         }
         Rays { nodes, prims }
     }
@@ -176,8 +164,8 @@ impl Rays {
     ) {
         let tiny = |c: f64| if c == 0.0 { 1e-300 } else { c };
         let inv = DVec3::ONE / DVec3::new(tiny(d.x), tiny(d.y), tiny(d.z));
-        // a median split keeps the tree balanced: its depth is about log2(polygons / LEAF),
-        // far below the stack's size
+        // below [`SAH_DEPTH`] the splits are medians: the depth stays below
+        // SAH_DEPTH + log2(polygons / LEAF), far below the stack's size
         let mut stack: [u32; 96] = [0; 96];
         let mut top = 1usize;
         while top > 0 {
@@ -253,6 +241,99 @@ fn classify(c: &[glam::DVec2], q: glam::DVec2, amb: f64) -> Hit {
         Hit::Edge
     } else {
         Hit::Inside
+    }
+}
+
+/// Bins along the centres' longest extent for the split's cost.
+const BINS: usize = 16;
+/// Depth from which nodes are split at the median (keeps the tree's depth bounded).
+const SAH_DEPTH: usize = 40;
+
+/// Orders `range` (polygons with `boxes` and `centres`, the centres within `clo`–`chi`)
+/// into two halves and returns the first's length: where the binned surface-area
+/// heuristic puts the cut (a ray meets a box about in proportion to its surface, and
+/// the faces' polygons range from a bus's whole side to a dish's sliver), or at the
+/// median when every centre falls in one bin or `median` is asked for.
+fn split(
+    range: &mut [u32],
+    boxes: &[(DVec3, DVec3)],
+    centres: &[DVec3],
+    clo: DVec3,
+    chi: DVec3,
+    median_only: bool,
+) -> usize {
+    let ext = chi - clo;
+    let k = if ext.x >= ext.y && ext.x >= ext.z {
+        0
+    } else if ext.y >= ext.z {
+        1
+    } else {
+        2
+    };
+    let median = |range: &mut [u32]| {
+        let mid = range.len() / 2;
+        range.select_nth_unstable_by(mid, |&a, &b| {
+            centres[a as usize][k].total_cmp(&centres[b as usize][k])
+        });
+        mid
+    };
+    if median_only || ext[k] <= 0.0 {
+        return median(range);
+    }
+    let bin_of = |c: DVec3| (((c[k] - clo[k]) / ext[k] * BINS as f64) as usize).min(BINS - 1);
+    let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    let mut bins = [(empty, 0usize); BINS];
+    for &p in range.iter() {
+        let (b, n) = &mut bins[bin_of(centres[p as usize])];
+        let (lo, hi) = boxes[p as usize];
+        *b = (b.0.min(lo), b.1.max(hi));
+        *n += 1;
+    }
+    let area = |(lo, hi): (DVec3, DVec3)| {
+        let d = (hi - lo).max(DVec3::ZERO);
+        d.x * d.y + d.y * d.z + d.z * d.x
+    };
+    // the cost of each cut after bin i: left's area × count + right's
+    let mut left = [0.0; BINS];
+    let (mut b, mut n) = (empty, 0);
+    for i in 0..BINS - 1 {
+        b = (b.0.min(bins[i].0 .0), b.1.max(bins[i].0 .1));
+        n += bins[i].1;
+        left[i] = if n > 0 {
+            area(b) * n as f64
+        } else {
+            f64::INFINITY
+        };
+    }
+    let (mut best, mut cut) = (f64::INFINITY, usize::MAX);
+    let (mut b, mut n) = (empty, 0);
+    for i in (0..BINS - 1).rev() {
+        b = (b.0.min(bins[i + 1].0 .0), b.1.max(bins[i + 1].0 .1));
+        n += bins[i + 1].1;
+        let cost = if n > 0 {
+            left[i] + area(b) * n as f64
+        } else {
+            f64::INFINITY
+        };
+        if cost < best {
+            (best, cut) = (cost, i);
+        }
+    }
+    if cut == usize::MAX {
+        return median(range);
+    }
+    // the polygons of bins up to `cut` first
+    let mut i = 0;
+    for j in 0..range.len() {
+        if bin_of(centres[range[j] as usize]) <= cut {
+            range.swap(i, j);
+            i += 1;
+        }
+    }
+    if i == 0 || i == range.len() {
+        median(range)
+    } else {
+        i
     }
 }
 
@@ -363,5 +444,72 @@ mod tests {
         let blocked = |x: DVec3| rays.blocked(&b.polys, &b.topo.open, x, up, u32::MAX, 1e-9);
         assert!(blocked(DVec3::new(0.3, 0.6, 3.5)));
         assert!(!blocked(DVec3::new(0.3, 0.6, 6.0)));
+    }
+
+    #[test]
+    fn the_hierarchy_finds_what_testing_every_polygon_finds_on_a_mesh_of_mixed_scales() {
+        // a 40 m slab, a finely meshed ball resting on it and a small box: polygons from
+        // a 40 m square to ~3 cm triangles, which the split's cost sorts unevenly
+        use crate::geometry::builtin::geodesic_sphere;
+        let mut mesh = Mesh::default();
+        push_box(
+            &mut mesh,
+            DVec3::new(-20.0, -20.0, -0.5),
+            DVec3::new(20.0, 20.0, 0.0),
+            0,
+        );
+        push_box(
+            &mut mesh,
+            DVec3::new(2.0, -0.2, 0.1),
+            DVec3::new(2.3, 0.2, 0.9),
+            0,
+        );
+        let ball = geodesic_sphere(12, 0.5);
+        let base = mesh.vertices.len() as u32;
+        mesh.vertices
+            .extend(ball.vertices.iter().map(|v| *v + DVec3::new(0.4, 0.1, 0.6)));
+        mesh.triangles
+            .extend(ball.triangles.iter().map(|t| t.map(|k| k + base)));
+        mesh.material_ids.resize(mesh.triangles.len(), 0);
+        let b = fixtures::build(&mesh);
+        let rays = Rays::build(&b.polys, &b.topo.open);
+        let (polys, open) = (&b.polys, &b.topo.open);
+        let eps = 1e-9;
+        // every polygon the ray meets beyond eps, as `visit` asks of a leaf
+        let brute = |x: DVec3, d: DVec3| -> Result<u32, Ambiguous> {
+            let mut n = 0;
+            for k in 0..polys.len() {
+                let f = polys.face[k] as usize;
+                let nd = polys.normal[f].dot(d);
+                if nd.abs() < 1e-12 || !(open[f] || nd > 0.0) {
+                    continue;
+                }
+                let t = polys.normal[f].dot(polys.point[f] - x) / nd;
+                if t <= eps {
+                    continue;
+                }
+                match classify(polys.corners2(k), polys.to2(f, x + d * t), eps) {
+                    Hit::Inside => n += 1,
+                    Hit::Outside => {}
+                    Hit::Edge => return Err(Ambiguous),
+                }
+            }
+            Ok(n)
+        };
+        let mut rng = crate::test_rng(7);
+        let mut hits = 0;
+        for _ in 0..2000 {
+            let x = DVec3::new(4.0 * rng() - 1.6, 2.0 * rng() - 0.9, 1.6 * rng() - 0.2);
+            let d = DVec3::new(rng() - 0.5, rng() - 0.5, rng() - 0.2).normalize();
+            let want = brute(x, d);
+            assert_eq!(rays.count(polys, open, x, d, u32::MAX, eps, eps), want);
+            if let Ok(n) = want {
+                hits += n;
+                let blocked = rays.blocked(polys, open, x, d, u32::MAX, eps);
+                assert_eq!(blocked, n > 0, "from {x} along {d}");
+            }
+        }
+        // the rays meet sheets often enough for the comparison to mean something
+        assert!(hits > 500, "{hits} sheets met");
     }
 }

@@ -559,7 +559,6 @@ fn cut_by_plane(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::builtin::geodesic_sphere;
 
     /// Every pair that meets, by testing all pairs (the truth the grids must find).
     fn all_pairs(mesh: &Mesh, welded: &[u32], tol: f64) -> Vec<(u32, u32, (DVec3, DVec3))> {
@@ -599,13 +598,7 @@ mod tests {
             triangles: vec![[0, 1, 2], [0, 2, 3], [4, 5, 6]],
             material_ids: vec![0; 3],
         };
-        let ball = geodesic_sphere(12, 0.3);
-        let base = mesh.vertices.len() as u32;
-        mesh.vertices
-            .extend(ball.vertices.iter().map(|v| *v + DVec3::new(0.4, 0.1, 0.2)));
-        mesh.triangles
-            .extend(ball.triangles.iter().map(|t| t.map(|k| k + base)));
-        mesh.material_ids.resize(mesh.triangles.len(), 0);
+        super::super::fixtures::push_ball(&mut mesh, 12, 0.3, DVec3::new(0.4, 0.1, 0.2));
         let nt = mesh.triangles.len();
         let welded = mesh.welded_ids();
         let tri_face: Vec<u32> = (0..nt as u32).collect();

@@ -34,9 +34,10 @@
 //! contacts) into convex cells ([`cells`]); a cell's count along each direction is its face's
 //! reference count plus the jumps of the lines between them: no ray. Only the cells of a
 //! face a contact runs through are decided by rays (the count does not follow the
-//! sheets there), one per region of each direction's own lines ([`areas`]). Nothing is recognised by shape: a convex mesh has no fold above any
-//! face and is one clean region (one ray a direction); a dish, a bell in a skirt or a
-//! crumpled fragment cost what their fold lines cost. The areas are exact up to
+//! sheets there), one per region of each direction's own lines ([`areas`]). Nothing is
+//! recognised by shape: a convex mesh has no fold above any face and is one clean
+//! region (one ray a direction); a dish, a bell in a skirt or a crumpled fragment cost
+//! what their fold lines cost. The areas are exact up to
 //! rounding (the tolerance does not enter), except on a face so many lines cross that
 //! its cells would exceed [`MAX_CELLS`]: that face is sampled on a fixed grid of
 //! points instead.
@@ -313,6 +314,18 @@ mod fixtures {
             topo,
             patches,
         }
+    }
+
+    /// Adds to `mesh` a geodesic ball (`crate::geometry::builtin::geodesic_sphere(n, r)`)
+    /// centred at `centre`, material 0.
+    pub fn push_ball(mesh: &mut Mesh, n: u32, r: f64, centre: DVec3) {
+        let ball = crate::geometry::builtin::geodesic_sphere(n, r);
+        let base = mesh.vertices.len() as u32;
+        mesh.vertices
+            .extend(ball.vertices.iter().map(|v| *v + centre));
+        mesh.triangles
+            .extend(ball.triangles.iter().map(|t| t.map(|k| k + base)));
+        mesh.material_ids.resize(mesh.triangles.len(), 0);
     }
 
     /// Directions spread over the sphere, none along an axis (a box's faces are never

@@ -164,7 +164,7 @@ impl Rays {
     ) {
         let tiny = |c: f64| if c == 0.0 { 1e-300 } else { c };
         let inv = DVec3::ONE / DVec3::new(tiny(d.x), tiny(d.y), tiny(d.z));
-        // below [`SAH_DEPTH`] the splits are medians: the depth stays below
+        // from depth SAH_DEPTH on the splits are medians: the depth stays below
         // SAH_DEPTH + log2(polygons / LEAF), far below the stack's size
         let mut stack: [u32; 96] = [0; 96];
         let mut top = 1usize;
@@ -253,7 +253,7 @@ const SAH_DEPTH: usize = 40;
 /// into two halves and returns the first's length: where the binned surface-area
 /// heuristic puts the cut (a ray meets a box about in proportion to its surface, and
 /// the faces' polygons range from a bus's whole side to a dish's sliver), or at the
-/// median when every centre falls in one bin or `median` is asked for.
+/// median when every centre falls in one bin or `median_only` is asked for.
 fn split(
     range: &mut [u32],
     boxes: &[(DVec3, DVec3)],
@@ -450,7 +450,6 @@ mod tests {
     fn the_hierarchy_finds_what_testing_every_polygon_finds_on_a_mesh_of_mixed_scales() {
         // a 40 m slab, a finely meshed ball resting on it and a small box: polygons from
         // a 40 m square to ~3 cm triangles, which the split's cost sorts unevenly
-        use crate::geometry::builtin::geodesic_sphere;
         let mut mesh = Mesh::default();
         push_box(
             &mut mesh,
@@ -464,13 +463,7 @@ mod tests {
             DVec3::new(2.3, 0.2, 0.9),
             0,
         );
-        let ball = geodesic_sphere(12, 0.5);
-        let base = mesh.vertices.len() as u32;
-        mesh.vertices
-            .extend(ball.vertices.iter().map(|v| *v + DVec3::new(0.4, 0.1, 0.6)));
-        mesh.triangles
-            .extend(ball.triangles.iter().map(|t| t.map(|k| k + base)));
-        mesh.material_ids.resize(mesh.triangles.len(), 0);
+        fixtures::push_ball(&mut mesh, 12, 0.5, DVec3::new(0.4, 0.1, 0.6));
         let b = fixtures::build(&mesh);
         let rays = Rays::build(&b.polys, &b.topo.open);
         let (polys, open) = (&b.polys, &b.topo.open);

@@ -22,7 +22,7 @@
 //! as wide as the patches or wider is evaluated at the beams like the rest.
 
 use super::{Brdf, Directions, Frame};
-use crate::geometry::orthonormal_basis;
+use crate::geometry::{orthonormal_basis, Cone};
 use crate::radiometry::earth::{gauss_legendre, Earthshine, SunlitEarth};
 use glam::DVec3;
 use std::f64::consts::TAU;
@@ -118,6 +118,29 @@ impl<'a> EarthLight<'a> {
             Some(g) if cr > 0.0 => beams + g.projected_given(frame, cr),
             _ => beams,
         }
+    }
+
+    /// The earthshine's f·cosθi·cosθr over a cone of normals that all face the view,
+    /// where it is linear: `Some(L)` with [`EarthLight::projected_given`] = (n·L)(n·v)
+    /// for every normal n of `cone` (L = Σ E_b k_b l_b over the beams above the cone;
+    /// zero when none is), `None` where a beam grazes the cone, a lobe may touch it, or
+    /// the glint rule may reach one of its normals.
+    pub fn linear_over(&self, cone: &Cone) -> Option<DVec3> {
+        if let Some(g) = &self.glint {
+            let v = g.v;
+            // the rule answers 0 while the mirror direction (2(n·v)n − v) stays out of
+            // its reach of the Earth's centre c: (2(n·v)n − v)·c ≤ this where n·v > 0
+            let c = g.earth.centre_dir;
+            let most = 2.0 * cone.max_dot(v) * cone.max_dot(c).max(0.0) - v.dot(c);
+            if most >= g.cos_reach {
+                return None;
+            }
+        }
+        let mut sum = DVec3::ZERO;
+        for (irradiance, d) in &self.beams {
+            sum += (irradiance * d.linear_over(cone)?) * d.light();
+        }
+        Some(sum)
     }
 
     /// [`EarthLight::projected_given`] computing n·v.

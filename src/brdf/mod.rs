@@ -11,11 +11,15 @@ pub mod rough_conductor;
 pub mod seed_microfacet;
 pub mod sun_disk;
 
+#[cfg(test)]
+mod linear_tests;
+
 pub use ashikhmin_shirley::AshikhminShirley;
 pub use lambert::Lambert;
 pub use rough_conductor::{RoughConductor, Shadowing};
 pub use seed_microfacet::SeedMicrofacet;
 
+use crate::geometry::Cone;
 use glam::DVec3;
 
 /// Local geometry of one evaluation. All vectors unit length, in one frame.
@@ -338,6 +342,39 @@ impl Directions {
             }
         }
         self.model(brdf, frame, ci, cr)
+    }
+
+    /// Where this light is linear over a cone of normals that all face the view
+    /// direction: `Some(k)` when, for every normal n of `cone`,
+    /// [`Directions::projected_given`] is exactly k·(n·l)·(n·v) as it computes it (k ≥ 0,
+    /// and 0 when l lies below every normal); `None` when it is not (`l` grazes the cone,
+    /// a specular lobe may reach some normal, or a model with no constant away from its
+    /// lobe). A patch of faces can then be summed as lᵀ(Σ A n nᵀ)v.
+    pub fn linear_over(&self, cone: &Cone) -> Option<f64> {
+        if cone.min_dot(self.v) <= 0.0 {
+            return None;
+        }
+        if cone.max_dot(self.l) < 0.0 {
+            return Some(0.0);
+        }
+        if cone.min_dot(self.l) <= 0.0 {
+            return None;
+        }
+        let away = self.away.as_ref()?;
+        if away.below.is_finite() {
+            // the lobe's term is zero on every face: n·h ≤ 0, or (n·h)² below its cut
+            let most = cone.max_dot(away.h);
+            if most > 0.0 && most * most >= away.below {
+                return None;
+            }
+        }
+        Some(away.diffuse)
+    }
+
+    /// The light direction.
+    #[inline]
+    pub(crate) fn light(&self) -> DVec3 {
+        self.l
     }
 
     /// The model for light from `l` (unit, `ci` = n·l > 0 and `cr` > 0 given), whose half

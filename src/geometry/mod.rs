@@ -4,6 +4,7 @@ pub mod articulation;
 pub mod basis;
 pub mod builtin;
 pub mod bvh;
+pub mod cone;
 pub mod convex;
 pub mod faces;
 pub mod mesh;
@@ -12,5 +13,6 @@ pub mod polygon;
 pub mod union_find;
 
 pub use basis::orthonormal_basis;
+pub use cone::Cone;
 pub use faces::{Face, Faces};
 pub use mesh::Mesh;

@@ -5,6 +5,7 @@
 //! band irradiance multiplies a purely geometric sum. A wavelength-dependent n(λ), k(λ)
 //! would evaluate the face sum per spectral bin and weight by the bin's irradiance.
 
+use super::silhouettes::{PatchLight, Silhouettes};
 use super::visibility::{FaceSide, Uncertain};
 use super::{Occlusion, Prepared};
 use crate::brdf::earth_light::EarthLight;
@@ -37,6 +38,7 @@ impl<'s> Lighting<'s> {
 #[derive(Default)]
 pub struct Scratch {
     lit: Vec<LitFace>,
+    lit_patches: Vec<LitPatch>,
     visibility: super::visibility::Cache,
     image: super::image::ImageScratch,
     silhouettes: super::silhouettes::Scratch,
@@ -61,6 +63,20 @@ struct LitFace {
     earth: f64,
     /// The face's area, m² (kept here: pass 2 then reads this list alone).
     area: f64,
+}
+
+/// A patch of faces whose light pass 1 found linear over its normals, to be summed
+/// whole where no direction decides its faces one by one ([`super::silhouettes`]'s
+/// patch sums).
+struct LitPatch {
+    patch: u32,
+    /// The Sun's and the earthshine's vectors L (Σ_f A_f (n_f·L)(n_f·v) is the patch's
+    /// term, W/sr); zero for a light that reaches none of its faces.
+    sun: DVec3,
+    earth: DVec3,
+    /// The patch's area, m².
+    area: f64,
+    light: PatchLight,
 }
 
 /// The light arriving at the object at one epoch: the Sun (after any eclipse) and the
@@ -155,7 +171,7 @@ pub fn evaluate(
     };
     let lights = material_lights(lighting.materials, epoch, dirs.view, &light);
     let (decided, unshadowed) = lit_faces(p, &lights, &dirs, scratch);
-    let (sums, rays) = visible_sums(p, &dirs, decided, unshadowed, scratch, cancelled);
+    let (sums, rays) = visible_sums(p, &lights, &dirs, decided, unshadowed, scratch, cancelled);
     (epoch_result(p, epoch, range, dirs.view, &light, sums), rays)
 }
 
@@ -192,6 +208,9 @@ fn lit_faces(
     let (v, es) = (dirs.view, dirs.sun_w_m2);
     scratch.lit.clear();
     scratch.visibility.reset();
+    if let Occlusion::Silhouettes(sil) = &p.occlusion {
+        return (Sums::default(), lit_patches(p, sil, lights, dirs, scratch));
+    }
     let mut unshadowed = 0.0;
     let lids = match &p.occlusion {
         Occlusion::PerFace(vis) => {
@@ -204,56 +223,127 @@ fn lit_faces(
     let whole = matches!(p.occlusion, Occlusion::None);
     let mut decided = Sums::default();
     for (i, face) in p.faces.faces.iter().enumerate() {
-        let light = &lights[face.material as usize];
-        let cr = face.normal.dot(v);
-        let side = if cr > 0.0 {
-            FaceSide::Front
-        } else if light.two_sided && cr < 0.0 {
-            FaceSide::Back
-        } else {
+        let Some((side, sun_term, earth_term)) = face_terms(face, lights, v, es) else {
             continue;
         };
-        let frame = Frame {
-            n: face.normal * side.sign(),
-            t: face.tangent,
-        };
-        // n·v on the side seen, for every light: (side·n)·v is side·(n·v) exactly
-        let cr = cr.abs();
-        let sun_term = if es > 0.0 {
-            // the Sun as a disk: a narrow lobe's glint is the disk's reflection, not a spike
-            es * light.sun.projected_given(&frame, cr)
-        } else {
-            0.0
-        };
-        let earth_term = light.earth.projected_given(&frame, cr);
-        if sun_term > 0.0 || earth_term > 0.0 {
-            unshadowed += (sun_term + earth_term) * face.area;
-            if whole {
-                decided.add(sun_term, earth_term, (face.area, face.area));
+        unshadowed += (sun_term + earth_term) * face.area;
+        if whole {
+            decided.add(sun_term, earth_term, (face.area, face.area));
+            continue;
+        }
+        if let Some(lids) = &lids {
+            if let Some(areas) = lids.decided(i, side, sun_term > 0.0, earth_term > 0.0) {
+                decided.add(sun_term, earth_term, areas);
                 continue;
             }
-            if let Some(lids) = &lids {
-                if let Some(areas) = lids.decided(i, side, sun_term > 0.0, earth_term > 0.0) {
-                    decided.add(sun_term, earth_term, areas);
-                    continue;
-                }
-            }
-            scratch.lit.push(LitFace {
-                face: i as u32,
-                side,
-                sun: sun_term,
-                earth: earth_term,
-                area: face.area,
-            });
         }
+        scratch.lit.push(LitFace {
+            face: i as u32,
+            side,
+            sun: sun_term,
+            earth: earth_term,
+            area: face.area,
+        });
     }
     (decided, unshadowed)
+}
+
+/// A face's side seen from unit `v` and its Sun and earthshine terms, W/(m²·sr) per m²
+/// (the Sun's band irradiance `es` included); `None` when it sends no light to the
+/// observer (not seen, or neither light reaches the side seen).
+#[inline]
+fn face_terms(
+    face: &crate::geometry::Face,
+    lights: &[MaterialLight],
+    v: DVec3,
+    es: f64,
+) -> Option<(FaceSide, f64, f64)> {
+    let light = &lights[face.material as usize];
+    let cr = face.normal.dot(v);
+    let side = if cr > 0.0 {
+        FaceSide::Front
+    } else if light.two_sided && cr < 0.0 {
+        FaceSide::Back
+    } else {
+        return None;
+    };
+    let frame = Frame {
+        n: face.normal * side.sign(),
+        t: face.tangent,
+    };
+    // n·v on the side seen, for every light: (side·n)·v is side·(n·v) exactly
+    let cr = cr.abs();
+    let sun_term = if es > 0.0 {
+        // the Sun as a disk: a narrow lobe's glint is the disk's reflection, not a spike
+        es * light.sun.projected_given(&frame, cr)
+    } else {
+        0.0
+    };
+    let earth_term = light.earth.projected_given(&frame, cr);
+    (sun_term > 0.0 || earth_term > 0.0).then_some((side, sun_term, earth_term))
+}
+
+/// Pass 1 for the silhouette method, a patch at a time: a patch of one material seen
+/// from one side, whose lights are linear over its normals, is listed whole in
+/// `scratch.lit_patches`; the faces of any other are listed one by one in `scratch.lit`.
+/// Returns the unshadowed signal (W/sr).
+fn lit_patches(
+    p: &Prepared,
+    sil: &Silhouettes,
+    lights: &[MaterialLight],
+    dirs: &Directions,
+    scratch: &mut Scratch,
+) -> f64 {
+    let (v, es) = (dirs.view, dirs.sun_w_m2);
+    scratch.lit_patches.clear();
+    let mut unshadowed = 0.0;
+    for k in 0..sil.patches() {
+        let faces = sil.patch_faces(k);
+        let first = &p.faces.faces[faces[0] as usize];
+        let two_sided = lights[first.material as usize].two_sided;
+        if let Some((material, cone, area, light)) = sil.summable(k, v, two_sided) {
+            let ml = &lights[material as usize];
+            let sun = if es > 0.0 {
+                ml.sun.linear_over(&cone).map(|l| es * l)
+            } else {
+                Some(DVec3::ZERO)
+            };
+            if let (Some(sun), Some(earth)) = (sun, ml.earth.linear_over(&cone)) {
+                if sun != DVec3::ZERO || earth != DVec3::ZERO {
+                    unshadowed += light.of(sun) + light.of(earth);
+                    scratch.lit_patches.push(LitPatch {
+                        patch: k as u32,
+                        sun,
+                        earth,
+                        area,
+                        light,
+                    });
+                }
+                continue;
+            }
+        }
+        for &f in faces {
+            let face = &p.faces.faces[f as usize];
+            if let Some((side, sun, earth)) = face_terms(face, lights, v, es) {
+                unshadowed += (sun + earth) * face.area;
+                scratch.lit.push(LitFace {
+                    face: f,
+                    side,
+                    sun,
+                    earth,
+                    area: face.area,
+                });
+            }
+        }
+    }
+    unshadowed
 }
 
 /// Pass 2: the lit-and-seen areas of the faces pass 1 listed, by the prepared method,
 /// added to pass 1's sums. Returns the epoch's sums and the rays cast.
 fn visible_sums(
     p: &Prepared,
+    lights: &[MaterialLight],
     dirs: &Directions,
     decided: Sums,
     unshadowed: f64,
@@ -262,6 +352,7 @@ fn visible_sums(
 ) -> (Sums, u64) {
     let Scratch {
         lit,
+        lit_patches,
         visibility,
         image,
         silhouettes,
@@ -284,23 +375,52 @@ fn visible_sums(
             (sums, rays)
         }
         Occlusion::Silhouettes(sil) => {
+            let whole = lit_patches.iter().flat_map(|lp| {
+                let (sun, earth) = (lp.sun != DVec3::ZERO, lp.earth != DVec3::ZERO);
+                sil.patch_faces(lp.patch as usize)
+                    .iter()
+                    .map(move |&f| (f, sun, earth))
+            });
             let wanted = lit.iter().map(|lf| (lf.face, lf.sun > 0.0, lf.earth > 0.0));
-            sil.want(silhouettes, wanted);
+            sil.want(silhouettes, wanted.chain(whole));
             sil.prepare(silhouettes, 0, Some(dirs.view));
             sil.drop_hidden(silhouettes);
             sil.prepare(silhouettes, 1, dirs.sunlit());
             sil.prepare(silhouettes, 2, dirs.earth);
             let mut rays = sil.group_rays(silhouettes);
+            let face_areas = |scratch: &mut _, sums: &mut Sums, face: u32, sun, earth, area| {
+                let (a_sun, a_earth, n) =
+                    sil.areas(scratch, face as usize, area, sun > 0.0, earth > 0.0);
+                sums.add(sun, earth, (a_sun, a_earth));
+                n
+            };
             for lf in lit.iter() {
-                let (a_sun, a_earth, n) = sil.areas(
-                    silhouettes,
-                    lf.face as usize,
-                    lf.area,
-                    lf.sun > 0.0,
-                    lf.earth > 0.0,
-                );
-                rays += n;
-                sums.add(lf.sun, lf.earth, (a_sun, a_earth));
+                rays += face_areas(silhouettes, &mut sums, lf.face, lf.sun, lf.earth, lf.area);
+            }
+            for lp in lit_patches.iter() {
+                let (sun, earth) = (lp.sun != DVec3::ZERO, lp.earth != DVec3::ZERO);
+                match sil.patch_visible(silhouettes, lp.patch as usize, sun, earth) {
+                    Some((sun_clear, earth_clear)) => {
+                        if sun_clear {
+                            sums.sun += lp.light.of(lp.sun);
+                            sums.lit_visible_area += lp.area;
+                        }
+                        if earth_clear {
+                            sums.earth += lp.light.of(lp.earth);
+                        }
+                    }
+                    // a line crosses it along some direction: face by face
+                    None => {
+                        for &f in sil.patch_faces(lp.patch as usize) {
+                            let face = &p.faces.faces[f as usize];
+                            let terms = face_terms(face, lights, dirs.view, dirs.sun_w_m2);
+                            if let Some((_, sun, earth)) = terms {
+                                rays +=
+                                    face_areas(silhouettes, &mut sums, f, sun, earth, face.area);
+                            }
+                        }
+                    }
+                }
             }
             (sums, rays)
         }

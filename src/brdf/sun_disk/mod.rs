@@ -41,6 +41,7 @@ mod rule;
 pub use penumbra::EarthDisk;
 
 use super::{Brdf, Directions, Fixed, Frame};
+use crate::geometry::Cone;
 use blob::{sample, widened, Sample};
 use glam::DVec3;
 use image::Image;
@@ -264,6 +265,23 @@ impl<'a> SunLight<'a> {
     #[inline]
     pub fn projected(&self, frame: &Frame) -> f64 {
         self.projected_given(frame, frame.n.dot(self.v))
+    }
+
+    /// The Sun's f·cosθi·cosθr over a cone of normals that all face the view, where it
+    /// is linear: `Some(L)` with [`SunLight::projected_given`] = (n·L)(n·v) for every
+    /// normal n of `cone` (L = k·l, zero when the Sun is below every normal), `None` where
+    /// the glint's reach or a lobe may touch a normal of it ([`Directions::linear_over`]).
+    pub fn linear_over(&self, cone: &Cone) -> Option<DVec3> {
+        if let Some(disk) = &self.disk {
+            // the mirror direction's reach: (2(n·v)n − v)·l = 2(n·v)(n·l) − v·l, at most
+            // this where n·v > 0 (n·l's bound taken at 0 when it is negative)
+            let most =
+                2.0 * cone.max_dot(self.v) * cone.max_dot(self.l).max(0.0) - self.v.dot(self.l);
+            if most >= disk.cos_reach {
+                return None;
+            }
+        }
+        self.point.dirs.linear_over(cone).map(|k| k * self.l)
     }
 
     /// [`SunLight::projected`] given `cr` = n·v, which the caller already has.

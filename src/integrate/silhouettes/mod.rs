@@ -13,8 +13,9 @@
 //!
 //! Built once per request: the faces as convex polygons in their planes ([`polygons`]),
 //! the edges and adjacency ([`topology`]), where separate pieces meet ([`contacts`]),
-//! connected patches of faces with the cones of their normals ([`patches`]), and a
-//! hierarchy of the polygons for rays ([`rays`]). An articulated mesh builds all but
+//! connected patches of faces with the cones of their normals ([`patches`]) and each
+//! patch's form Σ A n nᵀ for summing it whole ([`sums`]), and a hierarchy of the
+//! polygons for rays ([`rays`]). An articulated mesh builds all but
 //! the last once per part and moves them to each pose ([`posed`]).
 //!
 //! Per epoch and direction ([`Silhouettes::prepare`]):
@@ -29,6 +30,10 @@
 //! 4. one ray counts the sheets above the first unit of each connected region, and the
 //!    count floods the rest across edges, through crossed faces by the jumps of the
 //!    lines a path crosses ([`counts`]).
+//!
+//! A patch of one material whose lights are linear over its normals' cone and that no
+//! direction decides face by face is summed whole from its form, with no BRDF or area
+//! per face ([`sums`]; the caller lists it, `integrate::eq12`).
 //!
 //! A crossed face ([`Silhouettes::areas`], in [`areas`]) is cut by its lines (and its
 //! contacts) into convex cells ([`cells`]); a cell's count along each direction is its face's
@@ -53,6 +58,7 @@ mod patches;
 mod polygons;
 pub mod posed;
 mod rays;
+mod sums;
 mod topology;
 
 use crate::geometry::{Faces, Mesh};
@@ -64,6 +70,7 @@ use lines::Across;
 use patches::Patches;
 use polygons::Polygons;
 use rays::Rays;
+pub use sums::PatchLight;
 use topology::Topology;
 
 /// Most cells a face is cut into before it is sampled instead.
@@ -80,6 +87,8 @@ pub struct Silhouettes<'a> {
     polys: Polygons,
     topo: Topology,
     patches: Patches,
+    /// Per patch: what summing it whole takes.
+    sums: sums::PatchSums,
     rays: Rays,
     /// Per face: its triangles (CSR; a face too finely cut is sampled triangle by
     /// triangle).
@@ -162,8 +171,10 @@ impl<'a> Silhouettes<'a> {
             triangles.extend_from_slice(&f.triangles);
             triangles_at.push(triangles.len() as u32);
         }
+        let sums = sums::PatchSums::build(faces, &patches);
         Silhouettes {
             mesh,
+            sums,
             triangles_at,
             triangles,
             polys,

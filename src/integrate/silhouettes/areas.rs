@@ -121,18 +121,30 @@ impl Silhouettes<'_> {
         if !view.used {
             return;
         }
-        let mut dropped = false;
-        for (f, w) in scratch.wanted.iter_mut().enumerate() {
-            if *w & 0b110 != 0 && self.status(view, f) == Status::Dark {
-                *w &= 1;
-                dropped = true;
+        // a patch at a time: a clean one is seen or hidden whole
+        for p in 0..self.patches.len() {
+            if scratch.patch_wanted[p] & 0b110 == 0 {
+                continue;
             }
-        }
-        if dropped {
-            scratch.patch_wanted.fill(0);
-            for (f, &w) in scratch.wanted.iter().enumerate() {
-                scratch.patch_wanted[self.patches.of_face[f] as usize] |= w;
+            let faces = self.patches.faces_of(p);
+            if view.patch[p] == PatchState::Clean {
+                if view.patch_count[p] != 0 {
+                    for &f in faces {
+                        scratch.wanted[f as usize] &= 1;
+                    }
+                    scratch.patch_wanted[p] &= 1;
+                }
+                continue;
             }
+            let mut bits = 0;
+            for &f in faces {
+                let w = &mut scratch.wanted[f as usize];
+                if *w & 0b110 != 0 && self.status(view, f as usize) == Status::Dark {
+                    *w &= 1;
+                }
+                bits |= *w;
+            }
+            scratch.patch_wanted[p] = bits;
         }
     }
 

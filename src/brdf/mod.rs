@@ -92,6 +92,13 @@ impl Brdf {
 }
 
 impl Brdf {
+    /// Whether the model is a constant times cosθi·cosθr away from its specular lobe
+    /// (Lambert everywhere, the seed model where its lobe's term is exactly zero): only
+    /// such a model can be linear over a patch ([`Directions::linear_over`]).
+    pub fn has_constant_away_from_lobe(&self) -> bool {
+        matches!(self, Brdf::Lambert(_) | Brdf::SeedMicrofacet(_))
+    }
+
     /// RMS slope of the narrowest specular lobe, in the Beckmann convention
     /// exp(−tan²α/δ²) of the half vector (dimensionless); `None` without a specular lobe.
     /// Ashikhmin–Shirley's cosⁿ ≈ exp(−nα²/2) gives δ = √(2/n).

@@ -48,6 +48,8 @@ pub struct Scratch {
 /// with the BRDF's per-epoch part.
 struct MaterialLight<'a> {
     two_sided: bool,
+    /// The model can be linear over a patch of normals (patch sums).
+    linear: bool,
     sun: SunLight<'a>,
     earth: EarthLight<'a>,
 }
@@ -188,6 +190,7 @@ fn material_lights<'a>(
         .iter()
         .map(|m| MaterialLight {
             two_sided: m.two_sided,
+            linear: m.brdf.has_constant_away_from_lobe(),
             sun: SunLight::eclipsed(&m.brdf, epoch.sun, v, sun_radius, light.penumbra),
             earth: EarthLight::new(&m.brdf, &light.earthshine, v),
         })
@@ -299,9 +302,9 @@ fn lit_patches(
     let mut unshadowed = 0.0;
     for k in 0..sil.patches() {
         let faces = sil.patch_faces(k);
-        let first = &p.faces.faces[faces[0] as usize];
-        let two_sided = lights[first.material as usize].two_sided;
-        if let Some((material, cone, area, light)) = sil.summable(k, v, two_sided) {
+        let first = &lights[p.faces.faces[faces[0] as usize].material as usize];
+        let summable = || sil.summable(k, v, first.two_sided);
+        if let Some((material, cone, area, light)) = first.linear.then(summable).flatten() {
             let ml = &lights[material as usize];
             let sun = if es > 0.0 {
                 ml.sun.linear_over(&cone).map(|l| es * l)

@@ -1,7 +1,9 @@
 //! Convex hulls of points in a plane by Andrew's monotone chain: a point set's hull
-//! ([`convex_hull`]) and, by index, a hull's corners and the points near its boundary
-//! ([`HullIndices`]). Both sort with [`sort_by_position`] and walk [`monotone_chain`];
-//! each keeps its own rule for which turns keep a point, and so its own answer for
+//! ([`convex_hull`], which first drops the points inside the octagon of the set's
+//! extremes, so that a finely meshed face's hull sorts its outline only) and, by index,
+//! a hull's corners and the points near its boundary ([`HullIndices`]). Both sort with
+//! [`sort_by_position`] and walk [`monotone_chain`]; each keeps its own rule for which
+//! turns keep a point, and so its own answer for
 //! collinear points and NaN turns (a NaN coordinate): [`convex_hull`] drops a point on
 //! a turn ≤ 0 and keeps it on a NaN turn, [`HullIndices`] keeps a point only on a turn
 //! > 0 (corners) or ≥ −slack·|b − o| (near points), so a NaN turn drops it.

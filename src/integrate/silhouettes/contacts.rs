@@ -80,7 +80,8 @@ pub(super) fn contact_segments(
     }
     let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
     let boxes: Vec<(DVec3, DVec3)> = corners.iter().map(|c| box_of(c, tol)).collect();
-    let grid = LevelGrid::build(&boxes, tol);
+    let mut grid = LevelGrid::build(&boxes, tol);
+    grid.mark_faces(tri_face);
     let found = Found {
         mesh,
         welded,
@@ -233,7 +234,13 @@ struct Level {
     index: FxHashMap<u64, u32>,
     start: Vec<u32>,
     binned: Vec<u32>,
+    /// Per cell, after [`LevelGrid::mark_faces`]: the one face all its triangles lie in,
+    /// or [`MIXED`]; empty before.
+    face: Vec<u32>,
 }
+
+/// A cell whose triangles lie in more than one face.
+const MIXED: u32 = u32::MAX;
 
 /// Bits of a cell coordinate in a key (cells along an axis at level 0 are capped below
 /// 2^BITS).
@@ -347,6 +354,48 @@ impl LevelGrid {
         });
     }
 
+    /// Notes per cell the one face (`tri_face`: per triangle) all its triangles lie in:
+    /// a cell inside a large flat face, which the search for meetings with other faces
+    /// can pass over ([`LevelGrid::near_other`]).
+    fn mark_faces(&mut self, tri_face: &[u32]) {
+        for level in &mut self.levels {
+            level.face = level
+                .start
+                .windows(2)
+                .map(|w| {
+                    let items = &level.binned[w[0] as usize..w[1] as usize];
+                    let first = items.first().map_or(MIXED, |&t| tri_face[t as usize]);
+                    if items.iter().all(|&t| tri_face[t as usize] == first) {
+                        first
+                    } else {
+                        MIXED
+                    }
+                })
+                .collect();
+        }
+    }
+
+    /// [`LevelGrid::near`], passing over the cells whose triangles all lie in `face`
+    /// (after [`LevelGrid::mark_faces`]; none before).
+    #[inline]
+    fn near_other(&self, b: (DVec3, DVec3), k: u8, face: u32, mut each: impl FnMut(u32)) {
+        let level = &self.levels[k as usize];
+        if level.binned.is_empty() {
+            return;
+        }
+        self.cells_of(b, k, |key| {
+            if let Some(&i) = level.index.get(&key) {
+                if level.face.get(i as usize) == Some(&face) {
+                    return;
+                }
+                let (s, e) = (level.start[i as usize], level.start[i as usize + 1]);
+                level.binned[s as usize..e as usize]
+                    .iter()
+                    .for_each(|&t| each(t));
+            }
+        });
+    }
+
     /// Calls `each` with every binned triangle whose cell at its level box `b` touches
     /// (at least all whose boxes overlap `b`; some more than once). A level where `b`
     /// spans more cells than are occupied is read whole instead of cell by cell.
@@ -387,7 +436,9 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
                 near.clear();
                 let ks = grid.level[s];
                 for k in ks..grid.levels.len() as u8 {
-                    grid.near(boxes[s], k, |t| {
+                    // a cell all of s's own face holds no pair: pairs in one face are
+                    // not contacts
+                    grid.near_other(boxes[s], k, tri_face[s], |t| {
                         let ti = t as usize;
                         if (k > ks || ti > s) && stamp[ti] != s as u32 {
                             stamp[ti] = s as u32;

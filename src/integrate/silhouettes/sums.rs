@@ -66,15 +66,18 @@ impl PatchSums {
     }
 }
 
-/// What one patch sends to the observer per unit of light, if all of it is seen and lit.
+/// What one patch sends to the observer for a light linear over it, if all of it is
+/// seen and lit.
 pub struct PatchLight {
-    /// Σ_f A_f·(n_f·L)(n_f·v) for the light's vector L: [`PatchLight::of`].
+    /// Σ_f A_f n_f n_fᵀ, m².
     form: DMat3,
+    /// Unit direction to the observer.
     v: DVec3,
 }
 
 impl PatchLight {
-    /// Σ_f A_f (n_f·l)(n_f·v), W/(m²·sr) per unit of `l`'s length (m² sr⁻¹ scaled).
+    /// Σ_f A_f (n_f·l)(n_f·v) = lᵀ(Σ_f A_f n_f n_fᵀ)v: m² times `l`'s units (W/sr for a
+    /// light's vector L in W/(m²·sr), [`crate::brdf::Directions::linear_over`]).
     #[inline]
     pub fn of(&self, l: DVec3) -> f64 {
         l.dot(self.form * self.v)

@@ -30,4 +30,12 @@ pub(crate) fn test_rng(mut seed: u64) -> impl FnMut() -> f64 {
         (seed >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// A unit vector from three of `rnd`'s numbers (a point of the cube [−1, 1]³ normalised;
+/// +z in the unlikely case of the origin), for unit tests.
+#[cfg(test)]
+pub(crate) fn test_unit(rnd: &mut dyn FnMut() -> f64) -> glam::DVec3 {
+    glam::DVec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0)
+        .normalize_or(glam::DVec3::Z)
+}
 pub use scene::{Limits, Request, Response, Scene, ValidationError};

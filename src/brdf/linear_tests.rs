@@ -33,9 +33,7 @@ fn a_light_linear_over_a_cone_is_linear_on_every_normal_of_it() {
     // per-face sum only in the order of its products (~1e-16 each); a light wrongly
     // called linear (a lobe or a glint reaching the cone) misses by far more.
     let mut rnd = crate::test_rng(41);
-    let unit = |r: &mut dyn FnMut() -> f64| {
-        DVec3::new(2.0 * r() - 1.0, 2.0 * r() - 1.0, 2.0 * r() - 1.0).normalize_or(DVec3::Z)
-    };
+    let unit = crate::test_unit;
     let brdfs = [
         Brdf::Lambert(Lambert { albedo: 0.3 }),
         Brdf::SeedMicrofacet(SeedMicrofacet::new(0.1, 0.5, 0.01, 0.18, 3.6)),

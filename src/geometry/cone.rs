@@ -1,5 +1,6 @@
 //! A cone of unit normals: the bound that lets a patch of faces be summed as one.
 
+use super::angle_between;
 use glam::DVec3;
 
 /// Unit vectors within a half-angle of unit `axis`, the half-angle already widened past
@@ -74,12 +75,6 @@ impl Cone {
     }
 }
 
-/// Angle between unit vectors, rad; atan2 keeps it accurate near 0 and π.
-#[inline]
-fn angle_between(a: DVec3, b: DVec3) -> f64 {
-    a.cross(b).length().atan2(a.dot(b))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -90,10 +85,7 @@ mod tests {
         // with the bounds. Tolerance: the bounds may exceed the extremes by the margin's
         // effect on a cosine (≤ 1e-9) and must never fall short of them at all.
         let mut rnd = crate::test_rng(7);
-        let mut unit = || {
-            DVec3::new(2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0, 2.0 * rnd() - 1.0)
-                .normalize_or(DVec3::Z)
-        };
+        let mut unit = || crate::test_unit(&mut rnd);
         for _ in 0..200 {
             let axis = unit();
             let spread = 0.4 * unit().x.abs();

@@ -12,7 +12,7 @@ pub mod obj;
 pub mod polygon;
 pub mod union_find;
 
-pub use basis::orthonormal_basis;
+pub use basis::{angle_between, orthonormal_basis};
 pub use cone::Cone;
 pub use faces::{Face, Faces};
 pub use mesh::Mesh;

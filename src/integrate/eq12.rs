@@ -11,6 +11,7 @@ use super::{Occlusion, Prepared};
 use crate::brdf::earth_light::EarthLight;
 use crate::brdf::sun_disk::{EarthDisk, SunLight};
 use crate::brdf::Frame;
+use crate::geometry::angle_between;
 use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
 use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination, Material, Scene};
 use glam::DVec3;
@@ -79,6 +80,13 @@ struct LitPatch {
     /// The patch's area, m².
     area: f64,
     light: PatchLight,
+}
+
+impl LitPatch {
+    /// Whether the Sun and the earthshine reach it (the directions asked about it).
+    fn lit_by(&self) -> (bool, bool) {
+        (self.sun != DVec3::ZERO, self.earth != DVec3::ZERO)
+    }
 }
 
 /// The light arriving at the object at one epoch: the Sun (after any eclipse) and the
@@ -312,15 +320,16 @@ fn lit_patches(
                 Some(DVec3::ZERO)
             };
             if let (Some(sun), Some(earth)) = (sun, ml.earth.linear_over(&cone)) {
-                if sun != DVec3::ZERO || earth != DVec3::ZERO {
-                    unshadowed += light.of(sun) + light.of(earth);
-                    scratch.lit_patches.push(LitPatch {
-                        patch: k as u32,
-                        sun,
-                        earth,
-                        area,
-                        light,
-                    });
+                let lp = LitPatch {
+                    patch: k as u32,
+                    sun,
+                    earth,
+                    area,
+                    light,
+                };
+                if lp.lit_by() != (false, false) {
+                    unshadowed += lp.light.of(sun) + lp.light.of(earth);
+                    scratch.lit_patches.push(lp);
                 }
                 continue;
             }
@@ -379,7 +388,7 @@ fn visible_sums(
         }
         Occlusion::Silhouettes(sil) => {
             let whole = lit_patches.iter().flat_map(|lp| {
-                let (sun, earth) = (lp.sun != DVec3::ZERO, lp.earth != DVec3::ZERO);
+                let (sun, earth) = lp.lit_by();
                 sil.patch_faces(lp.patch as usize)
                     .iter()
                     .map(move |&f| (f, sun, earth))
@@ -401,7 +410,7 @@ fn visible_sums(
                 rays += face_areas(silhouettes, &mut sums, lf.face, lf.sun, lf.earth, lf.area);
             }
             for lp in lit_patches.iter() {
-                let (sun, earth) = (lp.sun != DVec3::ZERO, lp.earth != DVec3::ZERO);
+                let (sun, earth) = lp.lit_by();
                 match sil.patch_visible(silhouettes, lp.patch as usize, sun, earth) {
                     Some((sun_clear, earth_clear)) => {
                         if sun_clear {
@@ -550,9 +559,4 @@ impl Sums {
             self.lit_visible_area += a_sun;
         }
     }
-}
-
-/// Angle between unit vectors, rad; atan2 keeps it accurate near 0 and π.
-pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
-    a.cross(b).length().atan2(a.dot(b))
 }

@@ -337,15 +337,19 @@ impl LevelGrid {
     }
 
     /// Calls `each` with every triangle binned at level `k` in a cell that box `b`
-    /// touches (a triangle in several of them, once per cell).
+    /// touches (a triangle in several of them, once per cell), passing over the cells
+    /// whose triangles all lie in face `except` (after [`LevelGrid::mark_faces`]).
     #[inline]
-    fn near(&self, b: (DVec3, DVec3), k: u8, mut each: impl FnMut(u32)) {
+    fn near(&self, b: (DVec3, DVec3), k: u8, except: Option<u32>, mut each: impl FnMut(u32)) {
         let level = &self.levels[k as usize];
         if level.binned.is_empty() {
             return;
         }
         self.cells_of(b, k, |key| {
             if let Some(&i) = level.index.get(&key) {
+                if except.is_some() && level.face.get(i as usize) == except.as_ref() {
+                    return;
+                }
                 let (s, e) = (level.start[i as usize], level.start[i as usize + 1]);
                 level.binned[s as usize..e as usize]
                     .iter()
@@ -356,7 +360,7 @@ impl LevelGrid {
 
     /// Notes per cell the one face (`tri_face`: per triangle) all its triangles lie in:
     /// a cell inside a large flat face, which the search for meetings with other faces
-    /// can pass over ([`LevelGrid::near_other`]).
+    /// can pass over ([`LevelGrid::near`]).
     fn mark_faces(&mut self, tri_face: &[u32]) {
         for level in &mut self.levels {
             level.face = level
@@ -375,27 +379,6 @@ impl LevelGrid {
         }
     }
 
-    /// [`LevelGrid::near`], passing over the cells whose triangles all lie in `face`
-    /// (after [`LevelGrid::mark_faces`]; none before).
-    #[inline]
-    fn near_other(&self, b: (DVec3, DVec3), k: u8, face: u32, mut each: impl FnMut(u32)) {
-        let level = &self.levels[k as usize];
-        if level.binned.is_empty() {
-            return;
-        }
-        self.cells_of(b, k, |key| {
-            if let Some(&i) = level.index.get(&key) {
-                if level.face.get(i as usize) == Some(&face) {
-                    return;
-                }
-                let (s, e) = (level.start[i as usize], level.start[i as usize + 1]);
-                level.binned[s as usize..e as usize]
-                    .iter()
-                    .for_each(|&t| each(t));
-            }
-        });
-    }
-
     /// Calls `each` with every binned triangle whose cell at its level box `b` touches
     /// (at least all whose boxes overlap `b`; some more than once). A level where `b`
     /// spans more cells than are occupied is read whole instead of cell by cell.
@@ -406,7 +389,7 @@ impl LevelGrid {
             if span > level.index.len() as f64 {
                 level.binned.iter().for_each(|&t| each(t));
             } else {
-                self.near(b, k as u8, &mut each);
+                self.near(b, k as u8, None, &mut each);
             }
         }
     }
@@ -438,7 +421,7 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
                 for k in ks..grid.levels.len() as u8 {
                     // a cell all of s's own face holds no pair: pairs in one face are
                     // not contacts
-                    grid.near_other(boxes[s], k, tri_face[s], |t| {
+                    grid.near(boxes[s], k, Some(tri_face[s]), |t| {
                         let ti = t as usize;
                         if (k > ks || ti > s) && stamp[ti] != s as u32 {
                             stamp[ti] = s as u32;

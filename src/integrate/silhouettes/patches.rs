@@ -12,6 +12,7 @@
 use super::polygons::Polygons;
 use super::topology::{csr_of, Topology, NONE};
 use glam::{DMat3, DVec3};
+use rayon::prelude::*;
 
 /// Most faces a patch holds.
 const MAX_FACES: usize = 16;
@@ -312,7 +313,7 @@ fn edges_by_patch(
     let (inner_at, inner) = csr_of(np, inner_items);
     let (rim_at, rim) = csr_of(np, rim_items);
     // the exits grouped by the patch they lead into
-    exit_items.sort_by_key(|&(p, (_, _, out))| (p, of_face[out as usize]));
+    exit_items.par_sort_by_key(|&(p, (_, _, out))| (p, of_face[out as usize]));
     let mut links_at = vec![0u32; np + 1];
     let mut links = Vec::new();
     let exits: Vec<(u32, u32, u32)> = exit_items.iter().map(|x| x.1).collect();

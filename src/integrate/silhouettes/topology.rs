@@ -13,6 +13,7 @@ use crate::geometry::articulation::Motion;
 use crate::geometry::union_find::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// No triangle (a border edge's missing second side).
 pub const NONE: u32 = u32::MAX;
@@ -369,7 +370,8 @@ fn adjacency(edges: &[Edge], nf: usize) -> (Vec<u32>, Vec<(u32, u32)>) {
 fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec<Edge> {
     let key = |e: &Edge| (e.f0.min(e.f1), e.f0.max(e.f1), e.valley, e.flipped);
     let mut order: Vec<u32> = (0..edges.len() as u32).collect();
-    order.sort_by_key(|&i| key(&edges[i as usize]));
+    // the index breaks ties: the order of a stable sort, sorted in parallel
+    order.par_sort_unstable_by_key(|&i| (key(&edges[i as usize]), i));
     let mut out = Vec::with_capacity(edges.len());
     let mut used = vec![false; edges.len()];
     // (vertex, edge) of one group, sorted by vertex

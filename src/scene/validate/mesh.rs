@@ -12,6 +12,7 @@ use crate::geometry::{builtin, obj, Mesh};
 use crate::scene::request::{MeshSpec, PartSpec};
 use crate::scene::Material;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Largest mesh coordinate accepted, m.
 const MAX_COORDINATE_M: f64 = 1e12;
@@ -281,7 +282,8 @@ fn no_triangle_twice(mesh: &Mesh) -> Result<(), ValidationError> {
             ([w[r], w[(r + 1) % 3], w[(r + 2) % 3]], i)
         })
         .collect();
-    keyed.sort_unstable();
+    // keys unique (the index is one): in parallel, the order of any sort
+    keyed.par_sort_unstable();
     if let Some(pair) = keyed.windows(2).find(|p| p[0].0 == p[1].0) {
         let (a, b) = (pair[0].1.min(pair[1].1), pair[0].1.max(pair[1].1));
         return err(

@@ -312,14 +312,14 @@ fn lit_patches(
         let faces = sil.patch_faces(k);
         let first = &lights[p.faces.faces[faces[0] as usize].material as usize];
         let summable = || sil.summable(k, v, first.two_sided);
-        if let Some((material, cone, area, light)) = first.linear.then(summable).flatten() {
-            let ml = &lights[material as usize];
+        // summable only when every face's material is the first's
+        if let Some((cone, area, light)) = first.linear.then(summable).flatten() {
             let sun = if es > 0.0 {
-                ml.sun.linear_over(&cone).map(|l| es * l)
+                first.sun.linear_over(&cone).map(|l| es * l)
             } else {
                 Some(DVec3::ZERO)
             };
-            if let (Some(sun), Some(earth)) = (sun, ml.earth.linear_over(&cone)) {
+            if let (Some(sun), Some(earth)) = (sun, first.earth.linear_over(&cone)) {
                 let lp = LitPatch {
                     patch: k as u32,
                     sun,

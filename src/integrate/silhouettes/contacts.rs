@@ -450,9 +450,10 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
             near.sort_unstable();
             near.dedup();
             let mut found = Vec::new();
+            let ts = mesh.triangles[s];
             for &t in near.iter() {
                 let t = t as usize;
-                let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
+                let tt = mesh.triangles[t];
                 let shares = ts
                     .iter()
                     .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));

@@ -95,15 +95,10 @@ impl Silhouettes<'_> {
         self.patches.faces_of(p)
     }
 
-    /// Patch `p`'s material when all its faces share one, its normals' cone on the side
-    /// seen from unit `v` (when every face is seen from one side: a one-sided patch
-    /// facing v, or a two-sided one facing either way), its area (m²) and its form.
-    pub fn summable(
-        &self,
-        p: usize,
-        v: DVec3,
-        two_sided: bool,
-    ) -> Option<(u32, Cone, f64, PatchLight)> {
+    /// When all patch `p`'s faces share one material and are seen from one side from
+    /// unit `v` (a one-sided patch facing v, or a two-sided one facing either way): its
+    /// normals' cone on the side seen, its area (m²) and its form.
+    pub fn summable(&self, p: usize, v: DVec3, two_sided: bool) -> Option<(Cone, f64, PatchLight)> {
         let s = &self.sums;
         if s.material[p] == MIXED {
             return None;
@@ -117,7 +112,7 @@ impl Silhouettes<'_> {
             return None;
         };
         let light = PatchLight { form: s.form[p], v };
-        Some((s.material[p], seen, s.area[p], light))
+        Some((seen, s.area[p], light))
     }
 
     /// After [`Silhouettes::prepare`]: whether all of patch `p` is seen and sunlit, and

@@ -316,12 +316,13 @@ impl Silhouettes<'_> {
         let f = fp.face as usize;
         let corners = &dir.corners[fp.corners.0 as usize..fp.corners.1 as usize];
         let one = (self.polys.of(f).len() == 1).then_some(corners);
+        let receiver = lines::Receiver::new(&self.polys, f, across.d, one);
         for near in &dir.near {
             if near.top <= fp.bottom || near.lo.cmpgt(fp.hi).any() || near.hi.cmplt(fp.lo).any() {
                 continue;
             }
             let fold = &dir.folds[near.fold as usize];
-            if let Some(line) = lines::crossing(&self.polys, f, fold, &across, one) {
+            if let Some(line) = lines::crossing(&self.polys, &receiver, fold, &across) {
                 dir.lines.push(line);
             }
         }

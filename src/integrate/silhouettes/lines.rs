@@ -195,25 +195,49 @@ impl Default for Across {
     }
 }
 
-/// The shadow of fold `fold` on face `f` when it crosses one of the face's polygons
-/// (within `tol`) above the face's plane, as a line in the face's plane. `across`: the
-/// face's corners across d when it is one polygon; the test is then made there, where
-/// distances are never longer than in the face's plane (so a line within `tol` of the
-/// face there is kept, never one within it in the plane lost).
-#[inline]
-pub fn crossing(
-    polys: &Polygons,
+/// A receiving face as [`crossing`] tests folds against it, read once per face rather
+/// than once per fold: its index, unit normal, a point of its plane (m), 1 / (n·d) (a
+/// receiver faces along d or against it, never edge-on: n·d is not near zero), and its
+/// corners across d when it is one polygon.
+#[derive(Clone, Copy)]
+pub struct Receiver<'c> {
     f: usize,
-    fold: &Fold,
-    dir: &Across,
-    across: Option<&[DVec2]>,
-) -> Option<Line> {
+    n: DVec3,
+    o: DVec3,
+    inv_nd: f64,
+    across: Option<&'c [DVec2]>,
+}
+
+impl<'c> Receiver<'c> {
+    /// Face `f` receiving along unit `d`; `across`: its corners across d when it is one
+    /// polygon (the test is then made there, where distances are never longer than in
+    /// the face's plane, so a line within `tol` of the face there is kept, never one
+    /// within it in the plane lost).
+    #[inline]
+    pub fn new(polys: &Polygons, f: usize, d: DVec3, across: Option<&'c [DVec2]>) -> Self {
+        let n = polys.normal[f];
+        Receiver {
+            f,
+            n,
+            o: polys.point[f],
+            inv_nd: 1.0 / n.dot(d),
+            across,
+        }
+    }
+}
+
+/// The shadow of fold `fold` on face `r` when it crosses one of the face's polygons
+/// (within `tol`) above the face's plane, as a line in the face's plane.
+#[inline]
+pub fn crossing(polys: &Polygons, r: &Receiver, fold: &Fold, dir: &Across) -> Option<Line> {
     let Across { d, eps, tol, .. } = *dir;
-    let n = polys.normal[f];
-    let o = polys.point[f];
-    let nd = n.dot(d);
-    // a receiver faces along d or against it, never edge-on: nd is not near zero
-    let inv_nd = 1.0 / nd;
+    let Receiver {
+        f,
+        n,
+        o,
+        inv_nd,
+        across,
+    } = *r;
     // heights of the fold's ends above the face's plane, along d
     let sa = n.dot(fold.a - o) * inv_nd;
     let sb = n.dot(fold.b - o) * inv_nd;
@@ -227,9 +251,11 @@ pub fn crossing(
     } else if sb <= eps {
         t1 = 1.0 - (eps - sb) / (sa - sb);
     }
+    // n·d has the sign of 1 / (n·d)
+    let along = inv_nd > 0.0;
     if let Some(corners) = across {
         let e = fold.pb - fold.pa;
-        if !segment_meets(fold.pa + e * t0, fold.pa + e * t1, corners, tol, nd > 0.0) {
+        if !segment_meets(fold.pa + e * t0, fold.pa + e * t1, corners, tol, along) {
             return None;
         }
     }
@@ -246,7 +272,7 @@ pub fn crossing(
     }
     // The plane's coordinates turn the way (u, w) does seen along d when the face's
     // normal faces along d: u_f × w_f = n, so the map between them has the sign of n·d.
-    let jump = if nd > 0.0 { fold.jump } else { -fold.jump };
+    let jump = if along { fold.jump } else { -fold.jump };
     Some(Line {
         p,
         q,

@@ -205,10 +205,15 @@ pub fn segment_meets(a: DVec2, b: DVec2, c: &[DVec2], tol: f64, ccw: bool) -> bo
     let len2 = e.length_squared();
     if len2 > 0.0 {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        // plain comparisons: f64::min's care for NaN costs here, and no corner is NaN
         for &q in c {
             let s = e.perp_dot(q - a);
-            lo = lo.min(s);
-            hi = hi.max(s);
+            if s < lo {
+                lo = s;
+            }
+            if s > hi {
+                hi = s;
+            }
         }
         let gap = lo.max(-hi);
         if gap > 0.0 && gap * gap > tol2 * len2 {

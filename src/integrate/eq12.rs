@@ -309,6 +309,11 @@ fn lit_patches(
     scratch.lit_patches.clear();
     let mut unshadowed = 0.0;
     for k in 0..sil.patches() {
+        // about half the patches face away from the observer: skipped without reading
+        // their faces
+        if sil.unseen(k, v) {
+            continue;
+        }
         let faces = sil.patch_faces(k);
         let first = &lights[p.faces.faces[faces[0] as usize].material as usize];
         let summable = || sil.summable(k, v, first.two_sided);

@@ -95,6 +95,14 @@ impl Silhouettes<'_> {
         self.patches.faces_of(p)
     }
 
+    /// Does no face of patch `p` show a side to unit `v`: one-sided faces (a patch is all
+    /// one-sided or all two-sided) whose normals' cone lies wholly away from v? Such a
+    /// patch sends the observer nothing, so its faces need not be read one by one.
+    pub fn unseen(&self, p: usize, v: DVec3) -> bool {
+        !self.polys.two_sided[self.patches.faces_of(p)[0] as usize]
+            && self.sums.cone[p].max_dot(v) < 0.0
+    }
+
     /// When all patch `p`'s faces share one material and are seen from one side from
     /// unit `v` (a one-sided patch facing v, or a two-sided one facing either way): its
     /// normals' cone on the side seen, its area (m²) and its form.

@@ -249,3 +249,45 @@ fn the_box_wing_at_medium_detail_matches_exact_clipping_where_its_boom_meets_the
         "silhouette vs adaptive differ by {w:e} of the maximum"
     );
 }
+
+/// Pass 1 skips a patch as unseen without reading its faces: every face of such a patch
+/// must turn away from the observer (n·v < 0), on every class and along directions all
+/// round it, and the skip must take effect (a closed body turns some patch away from
+/// every direction).
+#[test]
+fn a_patch_skipped_as_unseen_turns_every_face_away_from_the_observer() {
+    use glint::geometry::Faces;
+    use glint::integrate::silhouettes::Silhouettes;
+    for class in CLASSES {
+        let v = coarse(
+            class,
+            request(class)["epochs"].as_array().unwrap()[..1].to_vec(),
+            json!({}),
+        );
+        let scene = Scene::from_json(&v.to_string(), &Limits::unlimited()).expect("valid request");
+        let faces = Faces::build(&scene.mesh, true);
+        let sil = Silhouettes::build(&scene, &faces);
+        for i in 0..64 {
+            // a Fibonacci spiral of view directions
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / 64.0;
+            let phi = i as f64 * 2.399_963_229_728_653;
+            let r = (1.0 - z * z).sqrt();
+            let view = DVec3::new(r * phi.cos(), r * phi.sin(), z);
+            let mut skipped = 0;
+            for p in 0..sil.patches() {
+                if !sil.unseen(p, view) {
+                    continue;
+                }
+                skipped += 1;
+                for &f in sil.patch_faces(p) {
+                    let n = faces.faces[f as usize].normal;
+                    assert!(
+                        n.dot(view) < 0.0,
+                        "{class}: face {f} of unseen patch {p} faces {view}"
+                    );
+                }
+            }
+            assert!(skipped > 0, "{class}: no patch skipped along {view}");
+        }
+    }
+}

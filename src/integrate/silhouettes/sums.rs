@@ -5,7 +5,7 @@
 //! what keeps a finely tessellated smooth surface's cost with its patches and lines.
 
 use super::direction::PatchState;
-use super::patches::Patches;
+use super::patches::{Facing, Patches};
 use super::{Scratch, Silhouettes};
 use crate::geometry::{Cone, Faces};
 use glam::{DMat3, DVec3};
@@ -96,11 +96,12 @@ impl Silhouettes<'_> {
     }
 
     /// Does no face of patch `p` show a side to unit `v`: one-sided faces (a patch is all
-    /// one-sided or all two-sided) whose normals' cone lies wholly away from v? Such a
-    /// patch sends the observer nothing, so its faces need not be read one by one.
+    /// one-sided or all two-sided) that face away from v as a whole (the patch's own
+    /// cone, as every direction's step 1 asks it)? Such a patch sends the observer
+    /// nothing, so its faces need not be read one by one.
     pub fn unseen(&self, p: usize, v: DVec3) -> bool {
         !self.polys.two_sided[self.patches.faces_of(p)[0] as usize]
-            && self.sums.cone[p].max_dot(v) < 0.0
+            && self.patches.facing(p, v) == Facing::Away
     }
 
     /// When all patch `p`'s faces share one material and are seen from one side from

@@ -104,6 +104,13 @@ impl Silhouettes<'_> {
             && self.patches.facing(p, v) == Facing::Away
     }
 
+    /// Patch `p`'s material when all its faces share one, else `None`.
+    #[inline]
+    pub fn material(&self, p: usize) -> Option<u32> {
+        let m = self.sums.material[p];
+        (m != MIXED).then_some(m)
+    }
+
     /// When all patch `p`'s faces share one material and are seen from one side from
     /// unit `v` (a one-sided patch facing v, or a two-sided one facing either way): its
     /// normals' cone on the side seen, its area (m²) and its form.

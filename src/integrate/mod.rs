@@ -92,6 +92,11 @@ impl<'a> Prepared<'a> {
         faces.set_tangents(|m| scene.materials[m as usize].tangent);
         faces.sort_spatially();
         let convex = is_convex(scene, &faces);
+        if scene.method == Method::Silhouette || (scene.method == Method::Auto && !convex) {
+            silhouettes::order_by_patches(&scene.mesh, &mut faces, |m| {
+                scene.materials[m as usize].two_sided
+            });
+        }
         let occlusion = match scene.method {
             Method::Adaptive => Occlusion::PerFace(Box::new(Visibility::build(
                 scene,

@@ -67,6 +67,7 @@ use cells::{Cells, Cutter};
 use direction::{Direction, FaceState, PatchState, UNKNOWN};
 use glam::{DVec2, DVec3};
 use lines::Across;
+pub use patches::order_by_patches;
 use patches::Patches;
 use polygons::Polygons;
 use rays::Rays;

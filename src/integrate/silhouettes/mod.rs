@@ -16,7 +16,9 @@
 //! connected patches of faces with the cones of their normals ([`patches`]) and each
 //! patch's form Σ A n nᵀ for summing it whole ([`sums`]), and a hierarchy of the
 //! polygons for rays ([`rays`]). An articulated mesh builds all but
-//! the last once per part and moves them to each pose ([`posed`]).
+//! the last once per part and moves them to each pose ([`posed`]). Before the build,
+//! the caller puts the faces in patch order ([`order_by_patches`]), so that each
+//! direction reads a patch's faces from one run of every per-face table.
 //!
 //! Per epoch and direction ([`Silhouettes::prepare`]):
 //! 1. each patch's cone says whether it faces along d, away, or both ways;

@@ -222,11 +222,11 @@ fn grow_over<I: Iterator<Item = u32>>(
 }
 
 /// Renumbers `faces` (of `mesh`; `two_sided(material)`) so that the faces of each patch
-/// come one after another, as [`Patches::build`] will grow them: every step of a
+/// come one after another, as `Patches::build` will grow them: every step of a
 /// direction reads a patch's faces together (their polygons, normals, counts), and a
 /// patch whose faces lie scattered over the mesh's arrays costs a cache miss per face
 /// at ~200k faces. The patches are grown here over the faces' shared welded edges (what
-/// [`Topology`] is built from, without its contacts and polygons), so the build that
+/// `Topology` is built from, without its contacts and polygons), so the build that
 /// follows grows the same patches, or nearly, from faces already in their order.
 pub fn order_by_patches(
     mesh: &crate::geometry::Mesh,

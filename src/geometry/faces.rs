@@ -158,6 +158,17 @@ impl Faces {
         self.faces.len()
     }
 
+    /// Per triangle of the mesh (`triangles` of them, each in one face): its face.
+    pub fn triangle_faces(&self, triangles: usize) -> Vec<u32> {
+        let mut of = vec![0u32; triangles];
+        for (i, f) in self.faces.iter().enumerate() {
+            for &t in &f.triangles {
+                of[t as usize] = i as u32;
+            }
+        }
+        of
+    }
+
     /// The faces moved rigidly, each by `motion(face)` (normals turned, centroids
     /// moved; areas, radii and triangles kept), tangents taken again from `axis(material)`
     /// as [`Faces::set_tangents`] does. The welded ids and edges are kept: they stay

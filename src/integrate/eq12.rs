@@ -317,11 +317,12 @@ fn lit_patches(
         let faces = sil.patch_faces(k);
         // the patch's one material, from the patch's table: reading it off a face is a
         // cache miss per patch, the largest cost of this pass at ~200k triangles
-        let one = sil.material(k).map(|m| &lights[m as usize]);
-        let summable = |m: &MaterialLight| sil.summable(k, v, m.two_sided);
-        if let Some((first, (cone, area, light))) = one
-            .filter(|m| m.linear)
-            .and_then(|m| Some((m, summable(m)?)))
+        let linear = sil
+            .material(k)
+            .map(|m| &lights[m as usize])
+            .filter(|m| m.linear);
+        if let Some((first, (cone, area, light))) =
+            linear.and_then(|m| Some((m, sil.summable(k, v, m.two_sided)?)))
         {
             let sun = if es > 0.0 {
                 first.sun.linear_over(&cone).map(|l| es * l)

@@ -92,11 +92,6 @@ impl<'a> Prepared<'a> {
         faces.set_tangents(|m| scene.materials[m as usize].tangent);
         faces.sort_spatially();
         let convex = is_convex(scene, &faces);
-        if scene.method == Method::Silhouette || (scene.method == Method::Auto && !convex) {
-            silhouettes::order_by_patches(&scene.mesh, &mut faces, |m| {
-                scene.materials[m as usize].two_sided
-            });
-        }
         let occlusion = match scene.method {
             Method::Adaptive => Occlusion::PerFace(Box::new(Visibility::build(
                 scene,
@@ -111,12 +106,12 @@ impl<'a> Prepared<'a> {
             Method::Image => {
                 Occlusion::Image(Box::new(self::image::ImageView::build(scene, &faces)))
             }
-            Method::Silhouette => {
-                Occlusion::Silhouettes(Box::new(silhouettes::Silhouettes::build(scene, &faces)))
-            }
-            Method::Auto if !convex => {
-                Occlusion::Silhouettes(Box::new(silhouettes::Silhouettes::build(scene, &faces)))
-            }
+            Method::Silhouette => Occlusion::Silhouettes(Box::new(
+                silhouettes::Silhouettes::build_ordered(scene, &mut faces),
+            )),
+            Method::Auto if !convex => Occlusion::Silhouettes(Box::new(
+                silhouettes::Silhouettes::build_ordered(scene, &mut faces),
+            )),
             Method::Auto | Method::Convex => Occlusion::None,
         };
         Prepared::from_parts(scene, faces, convex, occlusion)

@@ -17,7 +17,7 @@
 //! patch's form Σ A n nᵀ for summing it whole ([`sums`]), and a hierarchy of the
 //! polygons for rays ([`rays`]). An articulated mesh builds all but
 //! the last once per part and moves them to each pose ([`posed`]). Before the build,
-//! the caller puts the faces in patch order ([`order_by_patches`]), so that each
+//! [`Silhouettes::build_ordered`] puts the faces in patch order, so that each
 //! direction reads a patch's faces from one run of every per-face table.
 //!
 //! Per epoch and direction ([`Silhouettes::prepare`]):
@@ -69,7 +69,7 @@ use cells::{Cells, Cutter};
 use direction::{Direction, FaceState, PatchState, UNKNOWN};
 use glam::{DVec2, DVec3};
 use lines::Across;
-pub use patches::order_by_patches;
+use patches::order_by_patches;
 use patches::Patches;
 use polygons::Polygons;
 use rays::Rays;
@@ -122,12 +122,7 @@ pub struct Scratch {
 
 /// Per triangle its face, and per face whether its material is two-sided.
 fn face_tables(scene: &Scene, faces: &Faces) -> (Vec<u32>, Vec<bool>) {
-    let mut tri_face = vec![0u32; scene.mesh.triangles.len()];
-    for (i, f) in faces.faces.iter().enumerate() {
-        for &t in &f.triangles {
-            tri_face[t as usize] = i as u32;
-        }
-    }
+    let tri_face = faces.triangle_faces(scene.mesh.triangles.len());
     let two_sided = faces
         .faces
         .iter()
@@ -144,6 +139,16 @@ fn eps_of(mesh: &Mesh) -> f64 {
 }
 
 impl<'a> Silhouettes<'a> {
+    /// [`Silhouettes::build`] after renumbering `faces` in patch order
+    /// (`patches::order_by_patches`): each direction then reads a patch's faces from one
+    /// run of every per-face table, not from all over them.
+    pub fn build_ordered(scene: &'a Scene, faces: &mut Faces) -> Silhouettes<'a> {
+        order_by_patches(&scene.mesh, faces, |m| {
+            scene.materials[m as usize].two_sided
+        });
+        Silhouettes::build(scene, faces)
+    }
+
     pub fn build(scene: &'a Scene, faces: &Faces) -> Silhouettes<'a> {
         let mesh = &scene.mesh;
         let (tri_face, two_sided) = face_tables(scene, faces);
@@ -312,16 +317,15 @@ mod fixtures {
     }
 
     pub fn build(mesh: &Mesh) -> Built {
-        let faces = Faces::build(mesh, true);
-        let mut tri_face = vec![0u32; mesh.triangles.len()];
-        for (i, f) in faces.faces.iter().enumerate() {
-            for &t in &f.triangles {
-                tri_face[t as usize] = i as u32;
-            }
-        }
+        of_faces(mesh, &Faces::build(mesh, true))
+    }
+
+    /// [`build`] on faces already made (and perhaps reordered).
+    pub fn of_faces(mesh: &Mesh, faces: &Faces) -> Built {
+        let tri_face = faces.triangle_faces(mesh.triangles.len());
         let two_sided = vec![false; faces.len()];
-        let topo = Topology::build(mesh, &faces, &tri_face, &two_sided, 1e-9);
-        let polys = Polygons::build(mesh, &faces, two_sided);
+        let topo = Topology::build(mesh, faces, &tri_face, &two_sided, 1e-9);
+        let polys = Polygons::build(mesh, faces, two_sided);
         let patches = Patches::build(&polys, &topo);
         Built {
             polys,

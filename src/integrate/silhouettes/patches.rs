@@ -237,19 +237,14 @@ pub fn order_by_patches(
     if nf < 2 {
         return;
     }
-    let mut tri_face = vec![NONE; mesh.triangles.len()];
-    for (f, face) in faces.faces.iter().enumerate() {
-        for &t in &face.triangles {
-            tri_face[t as usize] = f as u32;
-        }
-    }
+    let tri_face = faces.triangle_faces(mesh.triangles.len());
     let (_, sorted) = faces.welded_edges(mesh);
     let mut pairs = Vec::new();
     for run in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
         for (i, x) in run.iter().enumerate() {
             for y in &run[i + 1..] {
                 let (f, g) = (tri_face[x.2 as usize], tri_face[y.2 as usize]);
-                if f != g && f != NONE && g != NONE {
+                if f != g {
                     pairs.push((f, g));
                     pairs.push((g, f));
                 }
@@ -443,18 +438,7 @@ mod tests {
             // the build grows its patches from faces already in their order: a patch's
             // faces are one run of indices (the build's adjacency may differ from the
             // welded edges' where edges were merged in line: nearly every patch, not all)
-            let b = {
-                let mut tri_face = vec![0u32; mesh.triangles.len()];
-                for (i, f) in faces.faces.iter().enumerate() {
-                    for &t in &f.triangles {
-                        tri_face[t as usize] = i as u32;
-                    }
-                }
-                let two_sided = vec![false; faces.len()];
-                let topo = Topology::build(&mesh, &faces, &tri_face, &two_sided, 1e-9);
-                let polys = Polygons::build(&mesh, &faces, two_sided);
-                Patches::build(&polys, &topo)
-            };
+            let b = fixtures::of_faces(&mesh, &faces).patches;
             let runs = (0..b.len())
                 .filter(|&p| {
                     let mut m = b.faces_of(p).to_vec();

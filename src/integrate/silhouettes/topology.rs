@@ -516,12 +516,7 @@ mod tests {
     /// The topology of `mesh` (faces merged), with every face one-sided or two-sided.
     fn topology_of(mesh: &Mesh, two_sided: bool) -> Topology {
         let faces = Faces::build(mesh, true);
-        let mut tri_face = vec![0u32; mesh.triangles.len()];
-        for (i, f) in faces.faces.iter().enumerate() {
-            for &t in &f.triangles {
-                tri_face[t as usize] = i as u32;
-            }
-        }
+        let tri_face = faces.triangle_faces(mesh.triangles.len());
         Topology::build(mesh, &faces, &tri_face, &vec![two_sided; faces.len()], 1e-9)
     }
 

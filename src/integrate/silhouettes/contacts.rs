@@ -78,8 +78,8 @@ pub(super) fn contact_segments(
     if nt < 2 {
         return Vec::new();
     }
-    let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
-    let boxes: Vec<(DVec3, DVec3)> = corners.iter().map(|c| box_of(c, tol)).collect();
+    let corners: Vec<[DVec3; 3]> = (0..nt).into_par_iter().map(|i| mesh.corners(i)).collect();
+    let boxes: Vec<(DVec3, DVec3)> = corners.par_iter().map(|c| box_of(c, tol)).collect();
     let mut grid = LevelGrid::build(&boxes, tol);
     grid.mark_faces(tri_face);
     let found = Found {
@@ -227,16 +227,19 @@ struct LevelGrid {
     lo: DVec3,
     /// Level 0's cell side, m.
     cell: f64,
-    /// Per triangle: its level.
+    /// Per triangle: its level, and the cell of its box's low corner at that level.
     level: Vec<u8>,
+    first: Vec<[u32; 3]>,
     levels: Vec<Level>,
 }
 
 /// One level's occupied cells.
 #[derive(Default)]
 struct Level {
-    /// Cell key → its range of `binned` (CSR, `start[i]..start[i + 1]`).
+    /// Cell key → its index (CSR: cell `i` holds `binned[start[i]..start[i + 1]]`,
+    /// ascending triangle indices); `keys[i]`: cell `i`'s key.
     index: FxHashMap<u64, u32>,
+    keys: Vec<u64>,
     start: Vec<u32>,
     binned: Vec<u32>,
     /// Per cell, after [`LevelGrid::mark_faces`]: the one face all its triangles lie in,
@@ -288,14 +291,21 @@ impl LevelGrid {
         let cell = sizes[mid]
             .max(extent / (1u64 << (BITS - 1)) as f64)
             .max(tol);
-        let level: Vec<u8> = boxes.par_iter().map(|b| level_of(b, cell)).collect();
-        let top = level.iter().copied().max().unwrap_or(0) as usize;
         let mut grid = LevelGrid {
             lo,
             cell,
-            level,
+            level: Vec::new(),
+            first: Vec::new(),
             levels: Vec::new(),
         };
+        (grid.level, grid.first) = boxes
+            .par_iter()
+            .map(|b| {
+                let k = level_of(b, cell);
+                (k, grid.cell_at(b.0, k))
+            })
+            .unzip();
+        let top = grid.level.iter().copied().max().unwrap_or(0) as usize;
         grid.levels = (0..=top).map(|k| grid.bin(boxes, k as u8)).collect();
         grid
     }
@@ -304,7 +314,7 @@ impl LevelGrid {
     fn bin(&self, boxes: &[(DVec3, DVec3)], k: u8) -> Level {
         let mut level = Level::default();
         let mut count: Vec<u32> = Vec::new();
-        let mut keys: Vec<(u32, usize)> = Vec::new();
+        let mut entries: Vec<(u32, usize)> = Vec::new();
         for (t, b) in boxes.iter().enumerate() {
             if self.level[t] != k {
                 continue;
@@ -314,9 +324,10 @@ impl LevelGrid {
                 let i = *level.index.entry(key).or_insert(next);
                 if i as usize == count.len() {
                     count.push(0);
+                    level.keys.push(key);
                 }
                 count[i as usize] += 1;
-                keys.push((i, t));
+                entries.push((i, t));
             });
         }
         level.start = Vec::with_capacity(count.len() + 1);
@@ -325,36 +336,67 @@ impl LevelGrid {
             level.start.push(level.start.last().unwrap() + c);
         }
         let mut fill = level.start.clone();
-        level.binned = vec![0; keys.len()];
-        for (i, t) in keys {
+        level.binned = vec![0; entries.len()];
+        for (i, t) in entries {
             level.binned[fill[i as usize] as usize] = t as u32;
             fill[i as usize] += 1;
         }
         level
     }
 
-    /// Calls `each` with the key of every cell at level `k` that box `b` touches.
+    /// The integer coordinates at level `k` of the cell holding point `p` (clamped to
+    /// the grid).
     #[inline]
-    fn cells_of(&self, b: (DVec3, DVec3), k: u8, mut each: impl FnMut(u64)) {
+    fn cell_at(&self, p: DVec3, k: u8) -> [u32; 3] {
         let side = self.cell * (1u64 << k) as f64;
         let max = ((1u64 << BITS) - 1) as f64;
         // clamped first, the cast truncates towards zero: the floor, without a call to it
-        let at = |p: DVec3| ((p - self.lo) / side).clamp(DVec3::ZERO, DVec3::splat(max));
-        let (a, z) = (at(b.0).as_u64vec3(), at(b.1).as_u64vec3());
-        for w in a.z..=z.z {
-            for y in a.y..=z.y {
-                for x in a.x..=z.x {
-                    each(x | y << BITS | w << (2 * BITS));
+        ((p - self.lo) / side)
+            .clamp(DVec3::ZERO, DVec3::splat(max))
+            .as_uvec3()
+            .to_array()
+    }
+
+    /// A cell's key from its integer coordinates, and back.
+    #[inline]
+    fn key(c: [u32; 3]) -> u64 {
+        c[0] as u64 | (c[1] as u64) << BITS | (c[2] as u64) << (2 * BITS)
+    }
+
+    #[inline]
+    fn coords(key: u64) -> [u32; 3] {
+        let mask = (1u64 << BITS) - 1;
+        [
+            (key & mask) as u32,
+            (key >> BITS & mask) as u32,
+            (key >> (2 * BITS)) as u32,
+        ]
+    }
+
+    /// Calls `each` with the key of every cell at level `k` that box `b` touches.
+    #[inline]
+    fn cells_of(&self, b: (DVec3, DVec3), k: u8, mut each: impl FnMut(u64)) {
+        let (a, z) = (self.cell_at(b.0, k), self.cell_at(b.1, k));
+        for w in a[2]..=z[2] {
+            for y in a[1]..=z[1] {
+                for x in a[0]..=z[0] {
+                    each(LevelGrid::key([x, y, w]));
                 }
             }
         }
     }
 
-    /// Calls `each` with every triangle binned at level `k` in a cell that box `b`
-    /// touches (a triangle in several of them, once per cell), passing over the cells
-    /// whose triangles all lie in face `except` (after [`LevelGrid::mark_faces`]).
+    /// Calls `each` with the key and the triangles of every occupied cell at level `k`
+    /// that box `b` touches, passing over the cells whose
+    /// triangles all lie in face `except` (after [`LevelGrid::mark_faces`]).
     #[inline]
-    fn near(&self, b: (DVec3, DVec3), k: u8, except: Option<u32>, mut each: impl FnMut(u32)) {
+    fn cells_near(
+        &self,
+        b: (DVec3, DVec3),
+        k: u8,
+        except: Option<u32>,
+        mut each: impl FnMut(u64, &[u32]),
+    ) {
         let level = &self.levels[k as usize];
         if level.binned.is_empty() {
             return;
@@ -365,21 +407,19 @@ impl LevelGrid {
                     return;
                 }
                 let (s, e) = (level.start[i as usize], level.start[i as usize + 1]);
-                level.binned[s as usize..e as usize]
-                    .iter()
-                    .for_each(|&t| each(t));
+                each(key, &level.binned[s as usize..e as usize]);
             }
         });
     }
 
     /// Notes per cell the one face (`tri_face`: per triangle) all its triangles lie in:
     /// a cell inside a large flat face, which the search for meetings with other faces
-    /// can pass over ([`LevelGrid::near`]).
+    /// can pass over ([`LevelGrid::cells_near`]).
     fn mark_faces(&mut self, tri_face: &[u32]) {
         for level in &mut self.levels {
             level.face = level
                 .start
-                .windows(2)
+                .par_windows(2)
                 .map(|w| {
                     let items = &level.binned[w[0] as usize..w[1] as usize];
                     let first = items.first().map_or(MIXED, |&t| tri_face[t as usize]);
@@ -400,10 +440,12 @@ impl LevelGrid {
         for (k, level) in self.levels.iter().enumerate() {
             let side = self.cell * (1u64 << k) as f64;
             let span = ((b.1 - b.0) / side + DVec3::splat(2.0)).element_product();
-            if span > level.index.len() as f64 {
+            if span > level.keys.len() as f64 {
                 level.binned.iter().for_each(|&t| each(t));
             } else {
-                self.near(b, k as u8, None, &mut each);
+                self.cells_near(b, k as u8, None, |_, items| {
+                    items.iter().for_each(|&t| each(t))
+                });
             }
         }
     }
@@ -421,54 +463,70 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
         boxes,
         tol,
     } = *found;
-    let nt = boxes.len();
-    // each pair is tested once: by its triangle at the finer level, which looks at its
-    // own level and every coarser one (a few cells each), or at one level by the lower
-    // index
-    (0..nt)
+    let normal: Vec<DVec3> = corners.par_iter().map(unit_normal).collect();
+    // Two overlapping boxes share the cell (at the coarser one's level) that holds the
+    // low corner of their overlap, whose coordinates are the larger of their own low
+    // corners' (`first_s`: s's at that level): the pair is tested in that cell only, so
+    // none is tested twice and no list of candidates needs sorting.
+    let pair = |s: usize, t: usize, first_s: [u32; 3], cell: [u32; 3]| {
+        let (bs, bt, first_t) = (boxes[s], boxes[t], grid.first[t]);
+        if tri_face[s] == tri_face[t]
+            || group.is_some_and(|g| g[s] != g[t])
+            || !overlap(bs, bt)
+            || (0..3).any(|i| first_s[i].max(first_t[i]) != cell[i])
+        {
+            return None;
+        }
+        let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
+        let shares = ts
+            .iter()
+            .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
+        if shares {
+            return None;
+        }
+        let (lo, hi) = (s.min(t), s.max(t));
+        meet_with(&corners[lo], &corners[hi], normal[lo], normal[hi], tol)
+            .map(|seg| (lo as u32, hi as u32, seg))
+    };
+    // both at one level: cell by cell, each pair of its triangles
+    let within = grid.levels.par_iter().flat_map(|level| {
+        (0..level.keys.len()).into_par_iter().flat_map_iter(|i| {
+            let items = &level.binned[level.start[i] as usize..level.start[i + 1] as usize];
+            let cell = LevelGrid::coords(level.keys[i]);
+            let mut out = Vec::new();
+            // a cell of one face's triangles holds no pair: pairs in one face are not
+            // contacts
+            if level.face.get(i).is_none_or(|&f| f == MIXED) {
+                for (j, &s) in items.iter().enumerate() {
+                    let first_s = grid.first[s as usize];
+                    for &t in &items[j + 1..] {
+                        out.extend(pair(s as usize, t as usize, first_s, cell));
+                    }
+                }
+            }
+            out
+        })
+    });
+    // one finer than the other: the finer asks the coarser levels' cells its box
+    // touches (a few each)
+    let levels = grid.levels.len() as u8;
+    let across = (0..boxes.len())
         .into_par_iter()
-        .map_init(Vec::new, |near, s| {
-            near.clear();
-            let (ks, bs, fs) = (grid.level[s], boxes[s], tri_face[s]);
-            for k in ks..grid.levels.len() as u8 {
-                // a cell all of s's own face holds no pair: pairs in one face are
-                // not contacts
-                grid.near(bs, k, Some(fs), |t| {
-                    let ti = t as usize;
-                    if (k > ks || ti > s)
-                        && tri_face[ti] != fs
-                        && group.is_none_or(|g| g[s] == g[ti])
-                        && overlap(bs, boxes[ti])
-                    {
-                        near.push(t);
+        .filter(|&s| grid.level[s] + 1 < levels)
+        .flat_map_iter(|s| {
+            let mut out = Vec::new();
+            for k in grid.level[s] + 1..levels {
+                let first_s = grid.cell_at(boxes[s].0, k);
+                grid.cells_near(boxes[s], k, Some(tri_face[s]), |key, items| {
+                    let cell = LevelGrid::coords(key);
+                    for &t in items {
+                        out.extend(pair(s, t as usize, first_s, cell));
                     }
                 });
             }
-            // a triangle in several of the cells s touches comes once per cell: a few
-            // dozen at most, so sorting beats a stamp per triangle of the mesh (which
-            // rayon would allocate and fault in once per job it splits off)
-            near.sort_unstable();
-            near.dedup();
-            let mut found = Vec::new();
-            let ts = mesh.triangles[s];
-            for &t in near.iter() {
-                let t = t as usize;
-                let tt = mesh.triangles[t];
-                let shares = ts
-                    .iter()
-                    .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
-                if shares {
-                    continue;
-                }
-                let (lo, hi) = (s.min(t), s.max(t));
-                if let Some(seg) = meet(&corners[lo], &corners[hi], tol) {
-                    found.push((lo as u32, hi as u32, seg));
-                }
-            }
-            found
-        })
-        .flatten()
-        .collect()
+            out
+        });
+    within.chain(across).collect()
 }
 
 /// The pairs' segments as contacts, on both faces of each pair, with a face's pieces along
@@ -539,8 +597,27 @@ fn join_pieces(
 /// is longer than `tol`; coplanar triangles are left out (nothing in a face's plane
 /// shades it).
 pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> {
-    let na = (a[1] - a[0]).cross(a[2] - a[0]).normalize_or_zero();
-    let nb = (b[1] - b[0]).cross(b[2] - b[0]).normalize_or_zero();
+    meet_with(a, b, unit_normal(a), unit_normal(b), tol)
+}
+
+/// A triangle's unit normal (zero when it is degenerate).
+fn unit_normal(t: &[DVec3; 3]) -> DVec3 {
+    (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero()
+}
+
+/// [`meet`] with the triangles' unit normals given.
+fn meet_with(
+    a: &[DVec3; 3],
+    b: &[DVec3; 3],
+    na: DVec3,
+    nb: DVec3,
+    tol: f64,
+) -> Option<(DVec3, DVec3)> {
+    // most pairs that get here are neighbours on one smooth surface, one wholly on one
+    // side of the other's plane: that answer first, before the line they would share
+    if beyond_plane(a, nb, b[0], tol) || beyond_plane(b, na, a[0], tol) {
+        return None;
+    }
     let line = na.cross(nb);
     if line.length() < 1e-9 {
         return None;
@@ -558,8 +635,17 @@ pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> 
     Some((p0 + line * (lo - t0), p0 + line * (hi - t0)))
 }
 
+/// Do triangle `t`'s corners all lie farther than `tol` (m) on one side of the plane
+/// (unit `n`, through `p`)?
+#[inline]
+fn beyond_plane(t: &[DVec3; 3], n: DVec3, p: DVec3, tol: f64) -> bool {
+    let s = t.map(|v| n.dot(v - p));
+    s.iter().all(|&x| x > tol) || s.iter().all(|&x| x < -tol)
+}
+
 /// The interval (along `line`) of triangle `t` where it meets the plane (`n`, through
-/// `p`), with a point on it and that point's parameter.
+/// `p`), with a point on it and that point's parameter; `t` is not wholly on one side
+/// ([`beyond_plane`]).
 fn cut_by_plane(
     t: &[DVec3; 3],
     n: DVec3,
@@ -568,9 +654,6 @@ fn cut_by_plane(
     line: DVec3,
 ) -> Option<(f64, f64, (DVec3, f64))> {
     let s = t.map(|v| n.dot(v - p));
-    if s.iter().all(|&x| x > tol) || s.iter().all(|&x| x < -tol) {
-        return None;
-    }
     let mut pts: [DVec3; 4] = [DVec3::ZERO; 4];
     let mut k = 0;
     for i in 0..3 {
@@ -677,6 +760,31 @@ mod tests {
         let key =
             |v: &[(u32, u32, (DVec3, DVec3))]| v.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>();
         assert_eq!(key(&found), key(&truth));
+        // with faces of several triangles (the plate one face, the ball's triangles in
+        // fours) and the cells of one face passed over: the pairs across faces, still
+        // each once
+        let tri_face: Vec<u32> = (0..nt as u32)
+            .map(|t| if t < 2 { 0 } else { 1 + t / 4 })
+            .collect();
+        let mut grid = grid;
+        grid.mark_faces(&tri_face);
+        assert!(
+            grid.levels.iter().flat_map(|l| &l.face).any(|&f| f != MIXED),
+            "some cell holds one face's triangles only"
+        );
+        let at = Found {
+            tri_face: &tri_face,
+            ..at
+        };
+        let mut found = meeting_pairs(&at, &grid);
+        found.sort_unstable_by_key(|&(s, t, _)| (s, t));
+        let across: Vec<_> = truth
+            .iter()
+            .filter(|p| tri_face[p.0 as usize] != tri_face[p.1 as usize])
+            .copied()
+            .collect();
+        assert!(across.len() > 40, "{} pairs across faces", across.len());
+        assert_eq!(key(&found), key(&across));
     }
 
     #[test]

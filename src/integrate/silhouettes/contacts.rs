@@ -78,8 +78,10 @@ pub(super) fn contact_segments(
     if nt < 2 {
         return Vec::new();
     }
-    let corners: Vec<[DVec3; 3]> = (0..nt).into_par_iter().map(|i| mesh.corners(i)).collect();
-    let boxes: Vec<(DVec3, DVec3)> = corners.par_iter().map(|c| box_of(c, tol)).collect();
+    let boxes: Vec<(DVec3, DVec3)> = (0..nt)
+        .into_par_iter()
+        .map(|i| box_of(&mesh.corners(i), tol))
+        .collect();
     let mut grid = LevelGrid::build(&boxes, tol);
     grid.mark_faces(tri_face);
     let found = Found {
@@ -87,14 +89,13 @@ pub(super) fn contact_segments(
         welded,
         tri_face,
         group,
-        corners: &corners,
         boxes: &boxes,
         tol,
     };
     let mut pairs = meeting_pairs(&found, &grid);
     // in one order whatever found them: a face's pieces are joined from the first one on
     pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
-    join_pieces(&pairs, &corners, tri_face, tol)
+    join_pieces(&pairs, |t| mesh.corners(t), tri_face, tol)
 }
 
 /// Do boxes `a` and `b` overlap (touching counts)?
@@ -202,18 +203,17 @@ impl Across {
             }
         }
         pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
-        join_pieces(&pairs, corners, tri_face, tol)
+        join_pieces(&pairs, |t| corners[t], tri_face, tol)
     }
 }
 
 /// What [`meeting_pairs`] looks through: the mesh, its welded ids, each triangle's face
-/// and group (pairs only within one, when given), corners and boxes (widened by `tol`).
+/// and group (pairs only within one, when given), and boxes (widened by `tol`).
 struct Found<'a> {
     mesh: &'a Mesh,
     welded: &'a [u32],
     tri_face: &'a [u32],
     group: Option<&'a [u32]>,
-    corners: &'a [[DVec3; 3]],
     boxes: &'a [(DVec3, DVec3)],
     tol: f64,
 }
@@ -459,11 +459,9 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
         welded,
         tri_face,
         group,
-        corners,
         boxes,
         tol,
     } = *found;
-    let normal: Vec<DVec3> = corners.par_iter().map(unit_normal).collect();
     // Two overlapping boxes share the cell (at the coarser one's level) that holds the
     // low corner of their overlap, whose coordinates are the larger of their own low
     // corners' (`first_s`: s's at that level): the pair is tested in that cell only, so
@@ -485,8 +483,7 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
             return None;
         }
         let (lo, hi) = (s.min(t), s.max(t));
-        meet_with(&corners[lo], &corners[hi], normal[lo], normal[hi], tol)
-            .map(|seg| (lo as u32, hi as u32, seg))
+        meet(&mesh.corners(lo), &mesh.corners(hi), tol).map(|seg| (lo as u32, hi as u32, seg))
     };
     // both at one level: cell by cell, each pair of its triangles
     let within = grid.levels.par_iter().flat_map(|level| {
@@ -533,7 +530,7 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
 /// one other triangle joined where they overlap.
 fn join_pieces(
     pairs: &[(u32, u32, (DVec3, DVec3))],
-    corners: &[[DVec3; 3]],
+    corner: impl Fn(usize) -> [DVec3; 3],
     tri_face: &[u32],
     tol: f64,
 ) -> Vec<(u32, Contact)> {
@@ -559,7 +556,7 @@ fn join_pieces(
                 Contact {
                     a,
                     b,
-                    other: corners[other],
+                    other: corner(other),
                     face: tri_face[other],
                 },
             )
@@ -597,22 +594,8 @@ fn join_pieces(
 /// is longer than `tol`; coplanar triangles are left out (nothing in a face's plane
 /// shades it).
 pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> {
-    meet_with(a, b, unit_normal(a), unit_normal(b), tol)
-}
-
-/// A triangle's unit normal (zero when it is degenerate).
-fn unit_normal(t: &[DVec3; 3]) -> DVec3 {
-    (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero()
-}
-
-/// [`meet`] with the triangles' unit normals given.
-fn meet_with(
-    a: &[DVec3; 3],
-    b: &[DVec3; 3],
-    na: DVec3,
-    nb: DVec3,
-    tol: f64,
-) -> Option<(DVec3, DVec3)> {
+    let na = (a[1] - a[0]).cross(a[2] - a[0]).normalize_or_zero();
+    let nb = (b[1] - b[0]).cross(b[2] - b[0]).normalize_or_zero();
     // most pairs that get here are neighbours on one smooth surface, one wholly on one
     // side of the other's plane: that answer first, before the line they would share
     if beyond_plane(a, nb, b[0], tol) || beyond_plane(b, na, a[0], tol) {
@@ -748,7 +731,6 @@ mod tests {
             welded: &welded,
             tri_face: &tri_face,
             group: None,
-            corners: &corners,
             boxes: &boxes,
             tol,
         };
@@ -769,7 +751,10 @@ mod tests {
         let mut grid = grid;
         grid.mark_faces(&tri_face);
         assert!(
-            grid.levels.iter().flat_map(|l| &l.face).any(|&f| f != MIXED),
+            grid.levels
+                .iter()
+                .flat_map(|l| &l.face)
+                .any(|&f| f != MIXED),
             "some cell holds one face's triangles only"
         );
         let at = Found {

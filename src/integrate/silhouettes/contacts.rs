@@ -268,6 +268,9 @@ fn level_of(b: &(DVec3, DVec3), cell: f64) -> u8 {
 /// as an array panel), and 27 gained no more.
 const CELLS: f64 = 16.0;
 
+/// Cells remembered while binning ([`LevelGrid::bin`]).
+const RECENT: usize = 64;
+
 /// A cell whose triangles lie in more than one face.
 const MIXED: u32 = u32::MAX;
 
@@ -314,20 +317,31 @@ impl LevelGrid {
     fn bin(&self, boxes: &[(DVec3, DVec3)], k: u8) -> Level {
         let mut level = Level::default();
         let mut count: Vec<u32> = Vec::new();
-        let mut entries: Vec<(u32, usize)> = Vec::new();
+        let mut entries: Vec<(u32, u32)> = Vec::new();
+        // Neighbouring triangles (mostly neighbours in the mesh's order too) touch
+        // mostly the same cells: the last cells found, by their keys' low bits, before
+        // the map.
+        let mut recent = [(u64::MAX, 0u32); RECENT];
         for (t, b) in boxes.iter().enumerate() {
             if self.level[t] != k {
                 continue;
             }
             self.cells_of(*b, k, |key| {
-                let next = level.index.len() as u32;
-                let i = *level.index.entry(key).or_insert(next);
-                if i as usize == count.len() {
-                    count.push(0);
-                    level.keys.push(key);
-                }
+                let slot = &mut recent[key as usize % RECENT];
+                let i = if slot.0 == key {
+                    slot.1
+                } else {
+                    let next = level.index.len() as u32;
+                    let i = *level.index.entry(key).or_insert(next);
+                    if i == next {
+                        count.push(0);
+                        level.keys.push(key);
+                    }
+                    *slot = (key, i);
+                    i
+                };
                 count[i as usize] += 1;
-                entries.push((i, t));
+                entries.push((i, t as u32));
             });
         }
         level.start = Vec::with_capacity(count.len() + 1);
@@ -338,7 +352,7 @@ impl LevelGrid {
         let mut fill = level.start.clone();
         level.binned = vec![0; entries.len()];
         for (i, t) in entries {
-            level.binned[fill[i as usize] as usize] = t as u32;
+            level.binned[fill[i as usize] as usize] = t;
             fill[i as usize] += 1;
         }
         level

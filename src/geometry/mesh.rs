@@ -58,8 +58,8 @@ impl Mesh {
 
     /// The welded ids ([`Mesh::welded_ids`]) and every triangle's edges by their welded
     /// ends, lower first, with the triangle, sorted: the triangles sharing an edge are then
-    /// side by side, the first of them first (a sort, not a hash map: no allocation per
-    /// edge, and in parallel).
+    /// side by side, the first of them first (a counting sort by the lower end, then each
+    /// vertex's few edges by the other: no hash map, no comparison sort of them all).
     pub fn welded_edges(&self) -> (Vec<u32>, Vec<(u32, u32, u32)>) {
         self.welded_edges_within(None)
     }
@@ -68,14 +68,37 @@ impl Mesh {
     /// ([`Mesh::welded_ids_within`]).
     pub fn welded_edges_within(&self, group: Option<&[u32]>) -> (Vec<u32>, Vec<(u32, u32, u32)>) {
         let welded = self.welded_ids_within(group);
-        let mut edges = Vec::with_capacity(3 * self.triangles.len());
-        for (t, tri) in self.triangles.iter().enumerate() {
+        let ends = |tri: &[u32; 3], k: usize| {
+            let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
+            (a.min(b), a.max(b))
+        };
+        // where each lower end's edges start
+        let mut start = vec![0u32; welded.len() + 1];
+        for tri in &self.triangles {
             for k in 0..3 {
-                let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
-                edges.push((a.min(b), a.max(b), t as u32));
+                start[ends(tri, k).0 as usize + 1] += 1;
             }
         }
-        edges.par_sort_unstable();
+        for v in 0..welded.len() {
+            start[v + 1] += start[v];
+        }
+        // in triangle order within each lower end
+        let mut fill = start.clone();
+        let mut edges = vec![(0u32, 0u32, 0u32); 3 * self.triangles.len()];
+        for (t, tri) in self.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = ends(tri, k);
+                edges[fill[a as usize] as usize] = (a, b, t as u32);
+                fill[a as usize] += 1;
+            }
+        }
+        // then by the other end (a stable sort: the triangles stay in order)
+        for w in start.windows(2) {
+            let run = &mut edges[w[0] as usize..w[1] as usize];
+            if run.len() > 1 {
+                run.sort_by_key(|e| e.1);
+            }
+        }
         (welded, edges)
     }
 
@@ -314,5 +337,47 @@ mod tests {
             }
         }
         assert!(checked.iter().all(|&k| k > 100), "{checked:?}");
+    }
+
+    #[test]
+    fn welded_edges_are_every_edge_sorted_with_split_vertices_welded() {
+        // a geodesic ball (valences 5 and 6) with every triangle given its own three
+        // vertices, and a fan of 40 triangles around one vertex (one long run)
+        let ball = crate::geometry::builtin::geodesic_sphere(4, 1.0);
+        let mut mesh = Mesh::default();
+        for t in &ball.triangles {
+            let base = mesh.vertices.len() as u32;
+            mesh.vertices.extend(t.map(|k| ball.vertices[k as usize]));
+            mesh.triangles.push([base, base + 1, base + 2]);
+        }
+        let centre = mesh.vertices.len() as u32;
+        mesh.vertices.push(DVec3::new(3.0, 0.0, 0.0));
+        for i in 0..40u32 {
+            let at = |k: u32| {
+                let a = k as f64 / 40.0 * std::f64::consts::TAU;
+                DVec3::new(3.0, a.cos(), a.sin())
+            };
+            let base = mesh.vertices.len() as u32;
+            mesh.vertices.extend([at(i), at(i + 1)]);
+            mesh.triangles.push([centre, base, base + 1]);
+        }
+        mesh.material_ids = vec![0; mesh.triangles.len()];
+        let (welded, edges) = mesh.welded_edges();
+        assert_eq!(welded, mesh.welded_ids());
+        let mut want: Vec<(u32, u32, u32)> = Vec::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
+                want.push((a.min(b), a.max(b), t as u32));
+            }
+        }
+        want.sort_unstable();
+        assert_eq!(edges, want);
+        // welded: each inner edge of the ball is shared by two triangles
+        let shared = edges
+            .windows(2)
+            .filter(|w| (w[0].0, w[0].1) == (w[1].0, w[1].1))
+            .count();
+        assert_eq!(shared, 3 * ball.triangles.len() / 2 + 39);
     }
 }

@@ -13,7 +13,6 @@ use crate::geometry::articulation::Motion;
 use crate::geometry::union_find::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// No triangle (a border edge's missing second side).
 pub const NONE: u32 = u32::MAX;
@@ -369,9 +368,29 @@ fn adjacency(edges: &[Edge], nf: usize) -> (Vec<u32>, Vec<(u32, u32)>) {
 /// changes but the count of shadows to search and cut along.
 fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec<Edge> {
     let key = |e: &Edge| (e.f0.min(e.f1), e.f0.max(e.f1), e.valley, e.flipped);
-    let mut order: Vec<u32> = (0..edges.len() as u32).collect();
-    // the index breaks ties: the order of a stable sort, sorted in parallel
-    order.par_sort_unstable_by_key(|&i| (key(&edges[i as usize]), i));
+    // sorted by key, the index breaking ties: a counting sort by the lower face (a real
+    // face: NONE is the largest u32), then each face's few edges by the rest, stably
+    let lower = |i: usize| edges[i].f0.min(edges[i].f1) as usize;
+    let nf = (0..edges.len()).map(lower).max().map_or(0, |f| f + 1);
+    let mut start = vec![0u32; nf + 1];
+    for i in 0..edges.len() {
+        start[lower(i) + 1] += 1;
+    }
+    for f in 0..nf {
+        start[f + 1] += start[f];
+    }
+    let mut fill = start.clone();
+    let mut order = vec![0u32; edges.len()];
+    for i in 0..edges.len() {
+        order[fill[lower(i)] as usize] = i as u32;
+        fill[lower(i)] += 1;
+    }
+    for w in start.windows(2) {
+        let run = &mut order[w[0] as usize..w[1] as usize];
+        if run.len() > 1 {
+            run.sort_by_key(|&i| key(&edges[i as usize]));
+        }
+    }
     let mut out = Vec::with_capacity(edges.len());
     let mut used = vec![false; edges.len()];
     // (vertex, edge) of one group, sorted by vertex

@@ -271,6 +271,13 @@ const CELLS: f64 = 16.0;
 /// Cells remembered while binning ([`LevelGrid::bin`]).
 const RECENT: usize = 64;
 
+/// A cell key's slot among the [`RECENT`] (its bits mixed, the top six kept: the low bits
+/// are x's alone, the same for every cell of a face across x).
+#[inline]
+fn recent_slot(key: u64) -> usize {
+    (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 58) as usize
+}
+
 /// A cell whose triangles lie in more than one face.
 const MIXED: u32 = u32::MAX;
 
@@ -315,11 +322,16 @@ impl LevelGrid {
 
     /// Level `k`'s cells, with the triangles at that level binned (a counting sort).
     fn bin(&self, boxes: &[(DVec3, DVec3)], k: u8) -> Level {
+        // about as many cells as triangles, a few cells each: room made once, not by
+        // doubling (the map's rehashing was a tenth of the binning)
+        let n = self.level.iter().filter(|&&l| l == k).count();
         let mut level = Level::default();
-        let mut count: Vec<u32> = Vec::new();
-        let mut entries: Vec<(u32, u32)> = Vec::new();
+        level.index.reserve(n);
+        level.keys.reserve(n);
+        let mut count: Vec<u32> = Vec::with_capacity(n);
+        let mut entries: Vec<(u32, u32)> = Vec::with_capacity(4 * n);
         // Neighbouring triangles (mostly neighbours in the mesh's order too) touch
-        // mostly the same cells: the last cells found, by their keys' low bits, before
+        // mostly the same cells: the last cells found, by their keys' hash, before
         // the map.
         let mut recent = [(u64::MAX, 0u32); RECENT];
         for (t, b) in boxes.iter().enumerate() {
@@ -327,7 +339,7 @@ impl LevelGrid {
                 continue;
             }
             self.cells_of(*b, k, |key| {
-                let slot = &mut recent[key as usize % RECENT];
+                let slot = &mut recent[recent_slot(key)];
                 let i = if slot.0 == key {
                     slot.1
                 } else {

@@ -265,14 +265,26 @@ pub fn order_by_patches(
         |f| two_sided(list[f].material),
         |f| next[at[f] as usize..at[f + 1] as usize].iter().copied(),
     );
-    let mut slots: Vec<Option<crate::geometry::Face>> = std::mem::take(&mut faces.faces)
-        .into_iter()
-        .map(Some)
-        .collect();
-    faces.faces = order
-        .iter()
-        .map(|&f| slots[f as usize].take().expect("each face once"))
-        .collect();
+    permute(&mut faces.faces, &order);
+}
+
+/// Puts `items[order[k]]` at `k` for every k (`order` a permutation), in place: each cycle
+/// of the permutation followed by swaps (a copy of 200k faces through a table of options
+/// was a third of the ordering's time).
+fn permute<T>(items: &mut [T], order: &[u32]) {
+    let mut placed = vec![false; items.len()];
+    for start in 0..items.len() {
+        let mut k = start;
+        while !placed[k] {
+            placed[k] = true;
+            let from = order[k] as usize;
+            if from == start {
+                break;
+            }
+            items.swap(k, from);
+            k = from;
+        }
+    }
 }
 
 /// Per patch: its normals' cone, its box, whether a contact runs through it, and whether
@@ -415,6 +427,22 @@ mod tests {
     use super::super::fixtures;
     use super::*;
     use crate::geometry::builtin::geodesic_sphere;
+
+    #[test]
+    fn a_permutation_puts_each_item_where_the_order_says() {
+        let mut rnd = crate::test_rng(3);
+        for n in [0usize, 1, 2, 7, 1000] {
+            // a random permutation (Fisher–Yates), and its cycles followed
+            let mut order: Vec<u32> = (0..n as u32).collect();
+            for i in (1..n).rev() {
+                order.swap(i, ((rnd() * (i + 1) as f64) as usize).min(i));
+            }
+            let mut items: Vec<u32> = (0..n as u32).map(|i| 10 * i).collect();
+            permute(&mut items, &order);
+            let want: Vec<u32> = order.iter().map(|&k| 10 * k).collect();
+            assert_eq!(items, want);
+        }
+    }
 
     #[test]
     fn ordered_by_patches_each_patch_is_a_run_of_faces_and_no_face_is_lost() {

@@ -1,5 +1,6 @@
 //! The triangle mesh in the body frame, in f64 metres.
 
+use super::csr::{csr_of, sort_within};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -58,8 +59,8 @@ impl Mesh {
 
     /// The welded ids ([`Mesh::welded_ids`]) and every triangle's edges by their welded
     /// ends, lower first, with the triangle, sorted: the triangles sharing an edge are then
-    /// side by side, the first of them first (a counting sort by the lower end, then each
-    /// vertex's few edges by the other: no hash map, no comparison sort of them all).
+    /// side by side, the first of them first (grouped by the lower end, then each vertex's
+    /// few edges sorted by the other: no hash map, no comparison sort of them all).
     pub fn welded_edges(&self) -> (Vec<u32>, Vec<(u32, u32, u32)>) {
         self.welded_edges_within(None)
     }
@@ -68,37 +69,17 @@ impl Mesh {
     /// ([`Mesh::welded_ids_within`]).
     pub fn welded_edges_within(&self, group: Option<&[u32]>) -> (Vec<u32>, Vec<(u32, u32, u32)>) {
         let welded = self.welded_ids_within(group);
-        let ends = |tri: &[u32; 3], k: usize| {
-            let (a, b) = (welded[tri[k] as usize], welded[tri[(k + 1) % 3] as usize]);
-            (a.min(b), a.max(b))
-        };
-        // where each lower end's edges start
-        let mut start = vec![0u32; welded.len() + 1];
-        for tri in &self.triangles {
-            for k in 0..3 {
-                start[ends(tri, k).0 as usize + 1] += 1;
-            }
-        }
-        for v in 0..welded.len() {
-            start[v + 1] += start[v];
-        }
-        // in triangle order within each lower end
-        let mut fill = start.clone();
-        let mut edges = vec![(0u32, 0u32, 0u32); 3 * self.triangles.len()];
-        for (t, tri) in self.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let (a, b) = ends(tri, k);
-                edges[fill[a as usize] as usize] = (a, b, t as u32);
-                fill[a as usize] += 1;
-            }
-        }
-        // then by the other end (a stable sort: the triangles stay in order)
-        for w in start.windows(2) {
-            let run = &mut edges[w[0] as usize..w[1] as usize];
-            if run.len() > 1 {
-                run.sort_by_key(|e| e.1);
-            }
-        }
+        // grouped by the lower end, in triangle order, then each vertex's few edges by
+        // the other end, stably
+        let ids = &welded;
+        let edges = self.triangles.iter().enumerate().flat_map(|(t, tri)| {
+            (0..3).map(move |k| {
+                let (a, b) = (ids[tri[k] as usize], ids[tri[(k + 1) % 3] as usize]);
+                (a.min(b), (a.min(b), a.max(b), t as u32))
+            })
+        });
+        let (at, mut edges) = csr_of(welded.len(), edges);
+        sort_within(&at, &mut edges, |e| e.1);
         (welded, edges)
     }
 

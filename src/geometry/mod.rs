@@ -6,6 +6,7 @@ pub mod builtin;
 pub mod bvh;
 pub mod cone;
 pub mod convex;
+pub mod csr;
 pub mod faces;
 pub mod mesh;
 pub mod obj;

@@ -3,6 +3,7 @@
 //! share no vertex meet ([`contact_segments`]), and how the count of sheets above a face
 //! changes across one along a direction ([`Contact::jump`]).
 
+use crate::geometry::csr::csr_of;
 use crate::geometry::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -328,7 +329,6 @@ impl LevelGrid {
         let mut level = Level::default();
         level.index.reserve(n);
         level.keys.reserve(n);
-        let mut count: Vec<u32> = Vec::with_capacity(n);
         let mut entries: Vec<(u32, u32)> = Vec::with_capacity(4 * n);
         // Neighbouring triangles (mostly neighbours in the mesh's order too) touch
         // mostly the same cells: the last cells found, by their keys' hash, before
@@ -346,27 +346,15 @@ impl LevelGrid {
                     let next = level.index.len() as u32;
                     let i = *level.index.entry(key).or_insert(next);
                     if i == next {
-                        count.push(0);
                         level.keys.push(key);
                     }
                     *slot = (key, i);
                     i
                 };
-                count[i as usize] += 1;
                 entries.push((i, t as u32));
             });
         }
-        level.start = Vec::with_capacity(count.len() + 1);
-        level.start.push(0);
-        for c in &count {
-            level.start.push(level.start.last().unwrap() + c);
-        }
-        let mut fill = level.start.clone();
-        level.binned = vec![0; entries.len()];
-        for (i, t) in entries {
-            level.binned[fill[i as usize] as usize] = t;
-            fill[i as usize] += 1;
-        }
+        (level.start, level.binned) = csr_of(level.keys.len(), entries.iter().copied());
         level
     }
 

@@ -10,7 +10,8 @@
 //! direction what its patches and its shadow lines cost, not what its faces cost.
 
 use super::polygons::Polygons;
-use super::topology::{csr_of, Topology, NONE};
+use super::topology::{Topology, NONE};
+use crate::geometry::csr::{csr_of, sort_within};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
@@ -251,13 +252,10 @@ pub fn order_by_patches(
             }
         }
     }
-    let (at, mut next) = csr_of(nf, pairs);
+    let (at, mut next) = csr_of(nf, pairs.iter().copied());
     // each face's neighbours by index, not in the welded edges' order: the order must
     // follow from the geometry alone, not from how the mesh numbers its vertices
-    for f in 0..nf {
-        let list = &mut next[at[f] as usize..at[f + 1] as usize];
-        list.sort_unstable();
-    }
+    sort_within(&at, &mut next, |&g| g);
     let list = &faces.faces;
     let (_, _, order) = grow_over(
         nf,
@@ -391,8 +389,8 @@ fn edges_by_patch(
             exit_items.push((p1, (i as u32, e.f1, e.f0)));
         }
     }
-    let (inner_at, inner) = csr_of(np, inner_items);
-    let (rim_at, rim) = csr_of(np, rim_items);
+    let (inner_at, inner) = csr_of(np, inner_items.iter().copied());
+    let (rim_at, rim) = csr_of(np, rim_items.iter().copied());
     // the exits grouped by the patch they lead into
     exit_items.par_sort_by_key(|&(p, (_, _, out))| (p, of_face[out as usize]));
     let mut links_at = vec![0u32; np + 1];

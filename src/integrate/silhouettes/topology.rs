@@ -10,6 +10,7 @@
 
 use super::contacts::{contact_segments, Contact};
 use crate::geometry::articulation::Motion;
+use crate::geometry::csr::{csr_of, sort_within};
 use crate::geometry::union_find::{find, union};
 use crate::geometry::{Faces, Mesh};
 use glam::DVec3;
@@ -136,7 +137,7 @@ impl Topology {
             || contact_segments(mesh, welded, tri_face, group, tol),
         );
         let (adjacent_at, adjacent) = adjacency(&edges, faces.len());
-        let (contacts_at, contacts) = csr_of(faces.len(), contacts);
+        let (contacts_at, contacts) = csr_of(faces.len(), contacts.iter().copied());
         Topology {
             edges,
             adjacent_at,
@@ -181,7 +182,7 @@ impl Topology {
             }
         }
         contacts.extend(more);
-        let (contacts_at, contacts) = csr_of(nf, contacts);
+        let (contacts_at, contacts) = csr_of(nf, contacts.iter().copied());
         Topology {
             edges,
             adjacent_at: self.adjacent_at.clone(),
@@ -360,7 +361,7 @@ fn adjacency(edges: &[Edge], nf: usize) -> (Vec<u32>, Vec<(u32, u32)>) {
             with_edge.push((g, (f, i as u32)));
         }
     }
-    csr_of(nf, with_edge)
+    csr_of(nf, with_edge.iter().copied())
 }
 /// The edges with runs of edges between the same two faces (or along one face's border)
 /// that continue one another in a straight line joined into one: a finely meshed box side
@@ -368,29 +369,15 @@ fn adjacency(edges: &[Edge], nf: usize) -> (Vec<u32>, Vec<(u32, u32)>) {
 /// changes but the count of shadows to search and cut along.
 fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec<Edge> {
     let key = |e: &Edge| (e.f0.min(e.f1), e.f0.max(e.f1), e.valley, e.flipped);
-    // sorted by key, the index breaking ties: a counting sort by the lower face (a real
-    // face: NONE is the largest u32), then each face's few edges by the rest, stably
-    let lower = |i: usize| edges[i].f0.min(edges[i].f1) as usize;
-    let nf = (0..edges.len()).map(lower).max().map_or(0, |f| f + 1);
-    let mut start = vec![0u32; nf + 1];
-    for i in 0..edges.len() {
-        start[lower(i) + 1] += 1;
-    }
-    for f in 0..nf {
-        start[f + 1] += start[f];
-    }
-    let mut fill = start.clone();
-    let mut order = vec![0u32; edges.len()];
-    for i in 0..edges.len() {
-        order[fill[lower(i)] as usize] = i as u32;
-        fill[lower(i)] += 1;
-    }
-    for w in start.windows(2) {
-        let run = &mut order[w[0] as usize..w[1] as usize];
-        if run.len() > 1 {
-            run.sort_by_key(|&i| key(&edges[i as usize]));
-        }
-    }
+    // sorted by key, the index breaking ties: grouped by the lower face (a real face:
+    // NONE is the largest u32), then each face's few edges by the rest, stably
+    let lower = |e: &Edge| e.f0.min(e.f1);
+    let nf = edges.iter().map(lower).max().map_or(0, |f| f as usize + 1);
+    let (at, mut order) = csr_of(
+        nf,
+        edges.iter().enumerate().map(|(i, e)| (lower(e), i as u32)),
+    );
+    sort_within(&at, &mut order, |&i| key(&edges[i as usize]));
     let mut out = Vec::with_capacity(edges.len());
     let mut used = vec![false; edges.len()];
     // (vertex, edge) of one group, sorted by vertex
@@ -468,32 +455,6 @@ fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec
         }
     }
     out
-}
-
-/// Groups `(key, value)` pairs by key (each below `n`) into offsets (`n + 1`) and
-/// values, keeping the values' order within a key: a counting sort, linear in the pairs.
-pub(super) fn csr_of<V>(n: usize, items: Vec<(u32, V)>) -> (Vec<u32>, Vec<V>) {
-    let mut at = vec![0u32; n + 1];
-    for (k, _) in &items {
-        at[*k as usize + 1] += 1;
-    }
-    for i in 0..n {
-        at[i + 1] += at[i];
-    }
-    let mut fill: Vec<u32> = at[..n].to_vec();
-    let mut slots: Vec<Option<V>> = (0..items.len()).map(|_| None).collect();
-    for (k, v) in items {
-        let f = &mut fill[k as usize];
-        slots[*f as usize] = Some(v);
-        *f += 1;
-    }
-    (
-        at,
-        slots
-            .into_iter()
-            .map(|v| v.expect("every slot filled"))
-            .collect(),
-    )
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! Where separate pieces of the mesh touch or cross (the *contacts*: a boom's foot on a
-//! bus), found once per request: the segments where triangles of different faces that
-//! share no vertex meet ([`contact_segments`]), and how the count of sheets above a face
+//! bus), found once per request: the segments where triangles of different faces meet as
+//! separate pieces ([`contact_segments`]), and how the count of sheets above a face
 //! changes across one along a direction ([`Contact::jump`]).
 
 use crate::geometry::csr::csr_of;
@@ -64,8 +64,56 @@ impl Contact {
     }
 }
 
-/// Segments (m) where triangles of different faces that share no vertex meet: each is
-/// recorded on both faces. Found through grids of the triangles' boxes ([`LevelGrid`]).
+/// Where triangles `s` and `t` of `mesh` meet as separate pieces ([`meet`], within
+/// `tol`, m): two that share no vertex wherever they meet; two that share one vertex
+/// only where they meet beyond it (neighbours around a corner touch there and nowhere
+/// else, but a plate whose edge is welded to the centre of a cap it stands on meets
+/// the cap along a line from that corner); two that share an edge never (neighbours
+/// along it: the topology's).
+fn meeting(mesh: &Mesh, welded: &[u32], s: usize, t: usize, tol: f64) -> Option<(DVec3, DVec3)> {
+    let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
+    let mut shared = None;
+    let mut count = 0;
+    for &a in &ts {
+        if tt.iter().any(|&b| welded[a as usize] == welded[b as usize]) {
+            shared = Some(a);
+            count += 1;
+        }
+    }
+    let (cs, ct) = (mesh.corners(s), mesh.corners(t));
+    match (count, shared) {
+        (0, _) => meet(&cs, &ct, tol),
+        (1, Some(a)) => {
+            let at = mesh.vertices[a as usize];
+            // one's other two corners on one side of the other's plane: they touch at the
+            // corner only (most pairs around a corner of a smooth surface)
+            let apart = |x: &[DVec3; 3], y: &[DVec3; 3]| {
+                // heights times |n|, against tol times |n| (no square root)
+                let n = (y[1] - y[0]).cross(y[2] - y[0]);
+                let reach = tol * tol * n.length_squared();
+                let mut sides = x.iter().filter(|&&v| v != at).map(|&v| n.dot(v - at));
+                let (h0, h1) = (sides.next().unwrap_or(0.0), sides.next().unwrap_or(0.0));
+                h0 * h1 > 0.0 && h0 * h0 > reach && h1 * h1 > reach
+            };
+            if apart(&cs, &ct) || apart(&ct, &cs) {
+                return None;
+            }
+            let (p, q) = meet(&cs, &ct, tol)?;
+            // beyond the corner by more than rounding: a thousandth of the pair's size
+            let size = cs
+                .iter()
+                .chain(&ct)
+                .map(|&x| (x - at).length())
+                .fold(0.0f64, f64::max);
+            let far = (p - at).length().max((q - at).length());
+            (far > 1e-3 * size).then_some((p, q))
+        }
+        _ => None,
+    }
+}
+
+/// Segments (m) where triangles of different faces meet as separate pieces
+/// ([`meeting`]): each is recorded on both faces. Found through grids of the triangles' boxes ([`LevelGrid`]).
 /// With `group` (per triangle), only triangles of one group are paired: the contacts that
 /// a rigid motion of each group carries along ([`Across`] finds the others).
 pub(super) fn contact_segments(
@@ -489,15 +537,8 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
         {
             return None;
         }
-        let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
-        let shares = ts
-            .iter()
-            .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
-        if shares {
-            return None;
-        }
         let (lo, hi) = (s.min(t), s.max(t));
-        meet(&mesh.corners(lo), &mesh.corners(hi), tol).map(|seg| (lo as u32, hi as u32, seg))
+        meeting(mesh, welded, lo, hi, tol).map(|seg| (lo as u32, hi as u32, seg))
     };
     // both at one level: cell by cell, each pair of its triangles
     let within = grid.levels.par_iter().flat_map(|level| {
@@ -693,14 +734,7 @@ mod tests {
         let mut out = Vec::new();
         for s in 0..nt {
             for t in s + 1..nt {
-                let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
-                if ts
-                    .iter()
-                    .any(|&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]))
-                {
-                    continue;
-                }
-                if let Some(seg) = meet(&mesh.corners(s), &mesh.corners(t), tol) {
+                if let Some(seg) = meeting(mesh, welded, s, t, tol) {
                     out.push((s as u32, t as u32, seg));
                 }
             }

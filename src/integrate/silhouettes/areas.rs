@@ -31,12 +31,27 @@ pub(super) struct RayMemo {
 }
 
 impl RayMemo {
-    /// Readies the memo for a face whose lines along the direction are `lines`.
-    fn reset<'l>(&mut self, convex: bool, lines: impl Iterator<Item = &'l lines::Line>) {
+    /// Readies the memo for a face whose lines along the direction are `lines` and whose
+    /// contacts are `contacts` (in its plane's coordinates, m): a region is bounded by
+    /// every contact too, whether or not the count jumps across it along this direction
+    /// (a ray does not know why it is blocked: a wall of another piece that faces away
+    /// meets the face along a segment with no jump, and the face may be covered on one
+    /// side of it and not on the other).
+    fn reset<'l>(
+        &mut self,
+        convex: bool,
+        lines: impl Iterator<Item = &'l lines::Line>,
+        contacts: impl Iterator<Item = (DVec2, DVec2)>,
+    ) {
         self.lines.clear();
         self.answers.clear();
         self.lines
             .extend(lines.filter(|l| l.bounds).map(|l| (l.p, l.q)));
+        for c in contacts {
+            if !self.lines.contains(&c) {
+                self.lines.push(c);
+            }
+        }
         self.on = convex && self.lines.len() <= MEMO_LINES;
     }
 
@@ -184,7 +199,11 @@ impl Silhouettes<'_> {
         let (cells, dirs, memo) = (&scratch.cells, &scratch.dirs, &mut scratch.memo);
         for k in 0..3 {
             if status[k] == Status::Rays {
-                memo[k].reset(self.polys.convex[face], dirs[k].lines_of(face).iter());
+                memo[k].reset(
+                    self.polys.convex[face],
+                    dirs[k].lines_of(face).iter(),
+                    self.contact_segments(face),
+                );
             }
         }
         let mut rays = 0u64;
@@ -220,6 +239,15 @@ impl Silhouettes<'_> {
                     .map(|l| (l.p, l.q)),
             );
         }
+        // and along every contact of the face, whatever its jump: where rays decide the
+        // cells, each must lie on one side of every place another piece meets the face
+        if status.contains(&Status::Rays) {
+            for c in self.contact_segments(face) {
+                if !scratch.lines.contains(&c) {
+                    scratch.lines.push(c);
+                }
+            }
+        }
         let cells = &mut scratch.cells;
         cells.clear();
         let mut whole = true;
@@ -253,6 +281,14 @@ impl Silhouettes<'_> {
             }
         }
         whole
+    }
+
+    /// Face `f`'s contacts as segments in its plane's coordinates (m).
+    fn contact_segments(&self, f: usize) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
+        self.topo
+            .contacts_of(f)
+            .iter()
+            .map(move |c| (self.polys.to2(f, c.a), self.polys.to2(f, c.b)))
     }
 
     /// (seen and sunlit, seen and earthlit) at point `q` of `face` (its plane's
@@ -348,7 +384,7 @@ mod tests {
             line((-1.0, 0.5), (1.0, 0.5), false),
         ];
         let mut memo = RayMemo::default();
-        memo.reset(true, ls.iter());
+        memo.reset(true, ls.iter(), std::iter::empty());
         let mut rays = 0;
         let mut ask = |memo: &mut RayMemo, x: f64, y: f64| {
             memo.open(DVec2::new(x, y), || {
@@ -363,7 +399,7 @@ mod tests {
         }
         assert_eq!(rays, 4, "one ray a region");
         // a face that is not convex: a region may be two pieces of it, each its own ray
-        memo.reset(false, ls.iter());
+        memo.reset(false, ls.iter(), std::iter::empty());
         let mut rays = 0;
         for _ in 0..3 {
             memo.open(DVec2::new(0.3, 0.2), || {
@@ -372,5 +408,34 @@ mod tests {
             });
         }
         assert_eq!(rays, 3, "no sharing on a face that is not convex");
+    }
+
+    #[test]
+    fn a_contact_bounds_the_regions_a_ray_answers_for_whatever_its_jump() {
+        // one bounding line along x; a contact along y with no jump along this direction
+        // (another piece's wall that faces away): a piece may cover one side of it and
+        // not the other, so it splits the regions as a line would
+        let ls = [line((-1.0, 0.0), (1.0, 0.0), true)];
+        let contact = (DVec2::new(0.0, -1.0), DVec2::new(0.0, 1.0));
+        let mut memo = RayMemo::default();
+        memo.reset(true, ls.iter(), std::iter::once(contact));
+        let mut rays = 0;
+        for (x, y) in [
+            (0.3, 0.2),
+            (0.6, 0.4),
+            (-0.3, 0.2),
+            (-0.6, 0.4),
+            (0.3, -0.2),
+        ] {
+            let open = memo.open(DVec2::new(x, y), || {
+                rays += 1;
+                x > 0.0
+            });
+            assert_eq!(open, x > 0.0, "({x}, {y})");
+        }
+        assert_eq!(rays, 3, "one ray for each of the three regions asked about");
+        // a contact that is also a line of the direction is one bound, not two
+        memo.reset(true, ls.iter(), std::iter::once((ls[0].p, ls[0].q)));
+        assert_eq!(memo.lines.len(), 1);
     }
 }

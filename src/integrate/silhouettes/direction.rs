@@ -277,10 +277,10 @@ impl Silhouettes<'_> {
         dir.face_lines[f] = (start, dir.lines.len() as u32);
         let crossed = dir.lines.len() as u32 > start;
         // A path between two points of a face that is not convex may leave it. And
-        // where another piece meets a face, the meeting segments are found triangle
-        // pair by pair: one whose triangles share a corner with the face's is left
-        // out (it cannot be told from two neighbours meeting at that corner), so the
-        // count cannot be trusted to follow the lines there: rays per cell.
+        // where another piece meets a face the count does not follow the meeting
+        // segments: a wall of the piece that faces away meets the face with no jump,
+        // yet covers it on one side (counting across them instead made part of a bus
+        // side under the box-wing's boom lit): rays per cell, cut along every contact.
         let touched = !self.topo.contacts_of(f).is_empty();
         dir.face[f] = if touched || (crossed && !self.polys.convex[f]) {
             FaceState::Rays

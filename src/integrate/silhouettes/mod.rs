@@ -41,7 +41,8 @@
 //! contacts) into convex cells ([`cells`]); a cell's count along each direction is its face's
 //! reference count plus the jumps of the lines between them: no ray. Only the cells of a
 //! face a contact runs through are decided by rays (the count does not follow the
-//! sheets there), one per region of each direction's own lines ([`areas`]). Nothing is
+//! sheets there), cut along every contact, one ray per region of each direction's own
+//! lines and the face's contacts ([`areas`]). Nothing is
 //! recognised by shape: a convex mesh has no fold above any face and is one clean
 //! region (one ray a direction); a dish, a bell in a skirt or a crumpled fragment cost
 //! what their fold lines cost. The areas are exact up to

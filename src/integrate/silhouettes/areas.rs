@@ -47,11 +47,7 @@ impl RayMemo {
         self.answers.clear();
         self.lines
             .extend(lines.filter(|l| l.bounds).map(|l| (l.p, l.q)));
-        for c in contacts {
-            if !self.lines.contains(&c) {
-                self.lines.push(c);
-            }
-        }
+        push_new(&mut self.lines, contacts);
         self.on = convex && self.lines.len() <= MEMO_LINES;
     }
 
@@ -74,6 +70,16 @@ impl RayMemo {
         let open = ray();
         self.answers.push((key, open));
         open
+    }
+}
+
+/// Appends to `lines` each of `more` it does not hold yet (a contact across which the
+/// count jumps is one of a direction's lines already, with the same ends).
+fn push_new(lines: &mut Vec<(DVec2, DVec2)>, more: impl Iterator<Item = (DVec2, DVec2)>) {
+    for c in more {
+        if !lines.contains(&c) {
+            lines.push(c);
+        }
     }
 }
 
@@ -242,11 +248,7 @@ impl Silhouettes<'_> {
         // and along every contact of the face, whatever its jump: where rays decide the
         // cells, each must lie on one side of every place another piece meets the face
         if status.contains(&Status::Rays) {
-            for c in self.contact_segments(face) {
-                if !scratch.lines.contains(&c) {
-                    scratch.lines.push(c);
-                }
-            }
+            push_new(&mut scratch.lines, self.contact_segments(face));
         }
         let cells = &mut scratch.cells;
         cells.clear();

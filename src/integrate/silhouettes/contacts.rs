@@ -72,18 +72,17 @@ impl Contact {
 /// along it: the topology's).
 fn meeting(mesh: &Mesh, welded: &[u32], s: usize, t: usize, tol: f64) -> Option<(DVec3, DVec3)> {
     let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
-    let mut shared = None;
-    let mut count = 0;
-    for &a in &ts {
-        if tt.iter().any(|&b| welded[a as usize] == welded[b as usize]) {
-            shared = Some(a);
-            count += 1;
-        }
+    let mut shared = ts
+        .iter()
+        .filter(|&&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
+    let (first, second) = (shared.next(), shared.next());
+    if second.is_some() {
+        return None;
     }
     let (cs, ct) = (mesh.corners(s), mesh.corners(t));
-    match (count, shared) {
-        (0, _) => meet(&cs, &ct, tol),
-        (1, Some(a)) => {
+    match first {
+        None => meet(&cs, &ct, tol),
+        Some(&a) => {
             let at = mesh.vertices[a as usize];
             // one's other two corners on one side of the other's plane: they touch at the
             // corner only (most pairs around a corner of a smooth surface)
@@ -108,12 +107,12 @@ fn meeting(mesh: &Mesh, welded: &[u32], s: usize, t: usize, tol: f64) -> Option<
             let far = (p - at).length().max((q - at).length());
             (far > 1e-3 * size).then_some((p, q))
         }
-        _ => None,
     }
 }
 
 /// Segments (m) where triangles of different faces meet as separate pieces
-/// ([`meeting`]): each is recorded on both faces. Found through grids of the triangles' boxes ([`LevelGrid`]).
+/// ([`meeting`]): each is recorded on both faces. Found through grids of the triangles'
+/// boxes ([`LevelGrid`]).
 /// With `group` (per triangle), only triangles of one group are paired: the contacts that
 /// a rigid motion of each group carries along ([`Across`] finds the others).
 pub(super) fn contact_segments(

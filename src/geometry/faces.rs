@@ -148,7 +148,7 @@ impl Faces {
             .iter()
             .fold(DVec3::splat(f64::NEG_INFINITY), |a, f| a.max(f.centroid));
         let ext = (hi - lo).max(DVec3::splat(1e-300));
-        self.faces.sort_by_cached_key(|f| {
+        self.faces.par_sort_by_cached_key(|f| {
             let q = ((f.centroid - lo) / ext * 1023.0).as_uvec3();
             morton3(q.x, q.y, q.z)
         });

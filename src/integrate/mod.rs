@@ -88,9 +88,19 @@ impl<'a> Prepared<'a> {
     /// Merges faces, detects convexity, builds the BVH if rays are needed.
     pub fn new(scene: &'a Scene) -> Prepared<'a> {
         let per_triangle = scene.method == Method::Centroid;
-        let mut faces = Faces::build(&scene.mesh, !per_triangle);
-        faces.set_tangents(|m| scene.materials[m as usize].tangent);
-        faces.sort_spatially();
+        let silhouettes = matches!(scene.method, Method::Silhouette | Method::Auto);
+        // the contact search's grid needs only the triangles: binned while the faces
+        // merge, most of which runs on one thread (wasted when `auto` finds the object
+        // convex)
+        let (mut faces, grid) = rayon::join(
+            || {
+                let mut faces = Faces::build(&scene.mesh, !per_triangle);
+                faces.set_tangents(|m| scene.materials[m as usize].tangent);
+                faces.sort_spatially();
+                faces
+            },
+            || silhouettes.then(|| silhouettes::Silhouettes::contact_grid(&scene.mesh)),
+        );
         let convex = is_convex(scene, &faces);
         let occlusion = match scene.method {
             Method::Adaptive => Occlusion::PerFace(Box::new(Visibility::build(
@@ -106,13 +116,11 @@ impl<'a> Prepared<'a> {
             Method::Image => {
                 Occlusion::Image(Box::new(self::image::ImageView::build(scene, &faces)))
             }
-            Method::Silhouette => Occlusion::Silhouettes(Box::new(
-                silhouettes::Silhouettes::build_ordered(scene, &mut faces),
+            Method::Auto if convex => Occlusion::None,
+            Method::Silhouette | Method::Auto => Occlusion::Silhouettes(Box::new(
+                silhouettes::Silhouettes::build_ordered(scene, &mut faces, grid),
             )),
-            Method::Auto if !convex => Occlusion::Silhouettes(Box::new(
-                silhouettes::Silhouettes::build_ordered(scene, &mut faces),
-            )),
-            Method::Auto | Method::Convex => Occlusion::None,
+            Method::Convex => Occlusion::None,
         };
         Prepared::from_parts(scene, faces, convex, occlusion)
     }

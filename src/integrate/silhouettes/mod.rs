@@ -67,6 +67,7 @@ mod topology;
 use crate::geometry::{Faces, Mesh};
 use crate::scene::Scene;
 use cells::{Cells, Cutter};
+pub use contacts::TriangleGrid;
 use direction::{Direction, FaceState, PatchState, UNKNOWN};
 use glam::{DVec2, DVec3};
 use lines::Across;
@@ -143,21 +144,36 @@ impl<'a> Silhouettes<'a> {
     /// [`Silhouettes::build`] after renumbering `faces` in patch order
     /// (`patches::order_by_patches`): each direction then reads a patch's faces from one
     /// run of every per-face table, not from all over them.
-    pub fn build_ordered(scene: &'a Scene, faces: &mut Faces) -> Silhouettes<'a> {
+    /// `grid`: the scene's [`Silhouettes::contact_grid`] when built already.
+    pub fn build_ordered(
+        scene: &'a Scene,
+        faces: &mut Faces,
+        grid: Option<TriangleGrid>,
+    ) -> Silhouettes<'a> {
         order_by_patches(&scene.mesh, faces, |m| {
             scene.materials[m as usize].two_sided
         });
-        Silhouettes::build(scene, faces)
+        Silhouettes::build_with(scene, faces, grid)
+    }
+
+    /// What the search for contacts needs of the mesh alone: it may be built while the
+    /// faces merge, then handed to [`Silhouettes::build_ordered`].
+    pub fn contact_grid(mesh: &Mesh) -> TriangleGrid {
+        TriangleGrid::build(mesh, eps_of(mesh))
     }
 
     pub fn build(scene: &'a Scene, faces: &Faces) -> Silhouettes<'a> {
+        Silhouettes::build_with(scene, faces, None)
+    }
+
+    fn build_with(scene: &'a Scene, faces: &Faces, grid: Option<TriangleGrid>) -> Silhouettes<'a> {
         let mesh = &scene.mesh;
         let (tri_face, two_sided) = face_tables(scene, faces);
         let eps = eps_of(mesh);
         // the topology and the polygons need only the faces, the patches and the rays
         // only those two: built two at a time
         let (topo, polys) = rayon::join(
-            || Topology::build(mesh, faces, &tri_face, &two_sided, eps),
+            || Topology::build_within(mesh, faces, &tri_face, &two_sided, None, eps, grid),
             || Polygons::build(mesh, faces, two_sided.clone()),
         );
         let (patches, rays) = rayon::join(

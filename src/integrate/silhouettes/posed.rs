@@ -42,7 +42,8 @@ impl Reference {
         let mesh = &scene.mesh;
         let (tri_face, two_sided) = face_tables(scene, faces);
         let eps = eps_of(mesh);
-        let topo = Topology::build_within(mesh, faces, &tri_face, &two_sided, Some(group), eps);
+        let topo =
+            Topology::build_within(mesh, faces, &tri_face, &two_sided, Some(group), eps, None);
         let polys = Polygons::build(mesh, faces, two_sided);
         let patches = Patches::build(&polys, &topo);
         let group_of_face: Vec<u32> = faces

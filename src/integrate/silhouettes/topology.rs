@@ -8,7 +8,7 @@
 //! across a line where another piece of the mesh meets the face's plane inside the face
 //! (a contact: a boom's foot on a bus), fixed in the body frame and found here.
 
-use super::contacts::{contact_segments, Contact};
+use super::contacts::{contact_segments, Contact, TriangleGrid};
 use crate::geometry::articulation::Motion;
 use crate::geometry::csr::{csr_of, sort_within};
 use crate::geometry::union_find::{find, union};
@@ -95,6 +95,7 @@ pub struct Topology {
 }
 
 impl Topology {
+    #[cfg(test)]
     pub fn build(
         mesh: &Mesh,
         faces: &Faces,
@@ -102,13 +103,14 @@ impl Topology {
         two_sided: &[bool],
         tol: f64,
     ) -> Topology {
-        Topology::build_within(mesh, faces, tri_face, two_sided, None, tol)
+        Topology::build_within(mesh, faces, tri_face, two_sided, None, tol, None)
     }
 
     /// [`Topology::build`] with the contacts found only between triangles of one `group`
     /// (per triangle) when given: what moves with each group of an articulated mesh.
     /// `faces` must then have been merged within the groups
-    /// ([`Faces::build_within`]): no edge joins two groups.
+    /// ([`Faces::build_within`]): no edge joins two groups. `grid`: the contact search's
+    /// grid of the mesh at `tol` when built already ([`TriangleGrid`]).
     pub fn build_within(
         mesh: &Mesh,
         faces: &Faces,
@@ -116,6 +118,7 @@ impl Topology {
         two_sided: &[bool],
         group: Option<&[u32]>,
         tol: f64,
+        grid: Option<TriangleGrid>,
     ) -> Topology {
         // `two_sided` is per face
         // the welded edges that merging faces sorted, or sorted here when it did not
@@ -134,7 +137,7 @@ impl Topology {
                     open,
                 )
             },
-            || contact_segments(mesh, welded, tri_face, group, tol),
+            || contact_segments(mesh, welded, tri_face, group, tol, grid),
         );
         let (adjacent_at, adjacent) = adjacency(&edges, faces.len());
         let (contacts_at, contacts) = csr_of(faces.len(), contacts.iter().copied());

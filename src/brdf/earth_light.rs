@@ -24,6 +24,7 @@
 use super::{Brdf, Directions, Frame};
 use crate::geometry::{orthonormal_basis, Cone};
 use crate::radiometry::earth::{gauss_legendre, Earthshine, SunlitEarth};
+use crate::radiometry::EARTH_RADIUS_M;
 use glam::DVec3;
 use std::f64::consts::TAU;
 
@@ -61,6 +62,20 @@ struct Glint {
     /// cos of the largest angle between the face's mirror direction and the Earth's
     /// centre at which a node can still see the Earth.
     cos_reach: f64,
+    /// The largest tilt of h from the face's normal that a probe reaches, rad: the
+    /// probes' light directions lie within twice it of the mirror direction.
+    probe_tilt: f64,
+}
+
+/// What every probe of a face's lobe finds ([`over_earth`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Whole {
+    /// The lit Earth along every probe: the plain rule on every azimuth.
+    Lit,
+    /// Space or the Earth's night side along every probe: nothing.
+    Dark,
+    /// Either, or not proven: probed azimuth by azimuth.
+    Mixed,
 }
 
 impl<'a> EarthLight<'a> {
@@ -82,6 +97,7 @@ impl<'a> EarthLight<'a> {
                     } else {
                         reach.cos()
                     },
+                    probe_tilt: (slope * probes() as f64 * PROBE_STEP).atan(),
                 })
             }
             _ => None,
@@ -156,15 +172,46 @@ impl Glint {
         if mirror.dot(self.earth.centre_dir) < self.cos_reach {
             return 0.0;
         }
+        // the probes' light directions lie within twice the largest tilt of the mirror
+        // direction (reflecting v about h rather than n turns it by twice their angle);
+        // every h of the lobe faces the viewer when n·v > sin(tilt)
+        let tilt = self.probe_tilt;
+        let whole = over_earth(&self.earth, mirror, 2.0 * tilt, cr > tilt.sin());
+        if whole == Whole::Dark {
+            return 0.0;
+        }
         let (t1, t2) = orthonormal_basis(n);
         let step = TAU / GLINT_AZIMUTHS as f64;
         let nodes = laguerre();
-        let probes = ((2.0 * nodes[LAGUERRE - 1].0).sqrt() / PROBE_STEP).ceil() as usize;
+        let probes = probes();
         let mut sum = 0.0;
         for j in 0..GLINT_AZIMUTHS {
             let (sp, cp) = (step * (j as f64 + 0.5)).sin_cos();
             let across = t1 * cp + t2 * sp;
             let at = |s: f64| self.density(frame, n, across, s);
+            // Along one azimuth h turns about n × across, and l with it by twice the
+            // angle: the probes' l lie on an arc within `tilt` of its middle one.
+            let along = match whole {
+                Whole::Mixed => {
+                    let h = (n + across * (0.5 * tilt).tan()).normalize();
+                    let middle = 2.0 * self.v.dot(h) * h - self.v;
+                    let facing = cr * tilt.cos() > self.v.dot(across).abs() * tilt.sin();
+                    over_earth(&self.earth, middle, tilt, facing)
+                }
+                known => known,
+            };
+            match along {
+                Whole::Dark => continue,
+                Whole::Lit => {
+                    // what the probes would find: lit throughout
+                    sum += nodes
+                        .iter()
+                        .map(|&(s, w)| w * at(s).unwrap_or(0.0))
+                        .sum::<f64>();
+                    continue;
+                }
+                Whole::Mixed => {}
+            }
             let lit_at = |u: f64| self.lit(n, across, u * u);
             // is the Earth lit along this azimuth, probed every PROBE_STEP in u = √s
             // out to the last node's reach: if so throughout, the plain rule
@@ -257,6 +304,57 @@ impl Glint {
     }
 }
 
+/// Whether every light direction within `rho` (rad) of unit `axis` finds the lit
+/// Earth `e`, or every one finds none, when a bound proves it; `facing`: every h that
+/// probes them has v·h > 0 (else a probe finds nothing, and `Lit` is not claimed).
+/// Most faces' lobes, a few degrees wide, lie wholly on the day side, the night
+/// side or off the Earth, and the 32 × 57 probes of [`Glint::lit`] along their
+/// azimuths were 0.9 of an epoch of a rocket body in the default earthshine.
+///
+/// A direction at angle γ from the Earth's centre (within its angular radius θ_E)
+/// meets it at distance t(γ) = D cos γ − √(R² − D² sin² γ), which grows with γ, at a
+/// point that is sunlit when o·s + t (l·s) > 0 (o the object from the Earth's centre,
+/// D its length, s the Sun). Over the cone γ and l·s keep to ranges set by the
+/// axis's angles from the centre and from the Sun, and the bilinear t (l·s) to those
+/// ranges' corners. Margins of 1e-9 rad and 1e-9 D keep rounding on the side of
+/// `Mixed`.
+fn over_earth(e: &SunlitEarth, axis: DVec3, rho: f64, facing: bool) -> Whole {
+    const ANGLE: f64 = 1e-9;
+    let d = e.object.length();
+    let rho = rho + ANGLE;
+    let theta_e = e.cos_cap.clamp(-1.0, 1.0).acos();
+    let gamma = axis.dot(e.centre_dir).clamp(-1.0, 1.0).acos();
+    let beta = axis.dot(e.sun_dir).clamp(-1.0, 1.0).acos();
+    let (g_lo, g_hi) = ((gamma - rho).max(0.0), gamma + rho);
+    if g_lo > theta_e + ANGLE {
+        return Whole::Dark;
+    }
+    let r = EARTH_RADIUS_M;
+    let t = |g: f64| d * g.cos() - (r * r - (d * g.sin()).powi(2)).max(0.0).sqrt();
+    let (t_lo, t_hi) = (t(g_lo), t(g_hi.min(theta_e)));
+    let (ls_lo, ls_hi) = (
+        (beta + rho).min(std::f64::consts::PI).cos(),
+        (beta - rho).max(0.0).cos(),
+    );
+    let os = e.object.dot(e.sun_dir);
+    let margin = 1e-9 * d;
+    let most = os + if ls_hi >= 0.0 { t_hi } else { t_lo } * ls_hi;
+    if most < -margin {
+        return Whole::Dark;
+    }
+    let least = os + if ls_lo >= 0.0 { t_lo } else { t_hi } * ls_lo;
+    if g_hi < theta_e - ANGLE && least > margin && facing {
+        return Whole::Lit;
+    }
+    Whole::Mixed
+}
+
+/// Probes along each azimuth of the glint rule: every [`PROBE_STEP`] in u out to
+/// √(2 s) of the last Laguerre node.
+fn probes() -> usize {
+    ((2.0 * laguerre()[LAGUERRE - 1].0).sqrt() / PROBE_STEP).ceil() as usize
+}
+
 /// Gauss–Legendre nodes on [0, 1] for the lit pieces of an azimuth.
 fn legendre() -> &'static [(f64, f64)] {
     static NODES: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
@@ -310,6 +408,65 @@ fn laguerre() -> &'static [(f64, f64)] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every claim of [`over_earth`] holds at every one of ~1,600 directions spread over
+    /// its cone (rings out to the rim, the rim included), looked up one by one with
+    /// [`SunlitEarth::radiance`], over Earths seen from LEO to GEO at any phase and
+    /// cones from 0.1° to 20°; and the claims are not idle: each of the three answers
+    /// comes up at least a hundred times.
+    #[test]
+    fn a_lobe_claimed_wholly_lit_or_dark_is_so_at_every_direction_of_its_cone() {
+        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut unit = |next: &mut dyn FnMut() -> f64| {
+            let z = 2.0 * next() - 1.0;
+            let phi = TAU * next();
+            let r = (1.0 - z * z).sqrt();
+            DVec3::new(r * phi.cos(), r * phi.sin(), z)
+        };
+        let mut counts = [0usize; 3];
+        for _ in 0..3000 {
+            let distance = EARTH_RADIUS_M + 4e5 + next() * 3.6e7;
+            let object = unit(&mut next) * distance;
+            let sun_dir = unit(&mut next);
+            let centre_dir = -object / distance;
+            let earth = SunlitEarth {
+                object,
+                sun_dir,
+                radiance_scale: 1.0,
+                cos_cap: (1.0 - (EARTH_RADIUS_M / distance).powi(2)).sqrt(),
+                centre_dir,
+            };
+            // axes near the Earth's disk, most of them
+            let axis = (centre_dir + unit(&mut next) * (2.0 * next())).normalize();
+            let rho = (0.1 + 19.9 * next()).to_radians();
+            let claim = over_earth(&earth, axis, rho, true);
+            counts[claim as usize] += 1;
+            if claim == Whole::Mixed {
+                continue;
+            }
+            let (t1, t2) = orthonormal_basis(axis);
+            for ring in 0..=40 {
+                let a = rho * ring as f64 / 40.0;
+                for k in 0..40 {
+                    let phi = TAU * k as f64 / 40.0;
+                    let l = axis * a.cos() + (t1 * phi.cos() + t2 * phi.sin()) * a.sin();
+                    let lit = earth.radiance(l) > 0.0;
+                    assert_eq!(
+                        lit,
+                        claim == Whole::Lit,
+                        "{claim:?} at {a} rad from the axis, cone {rho} rad, {distance} m"
+                    );
+                }
+            }
+        }
+        assert!(counts.iter().all(|&c| c > 100), "{counts:?}");
+    }
 
     #[test]
     fn laguerre_rule_integrates_polynomials_against_e_minus_s() {

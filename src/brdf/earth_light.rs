@@ -423,7 +423,7 @@ mod tests {
             seed ^= seed << 17;
             (seed >> 11) as f64 / (1u64 << 53) as f64
         };
-        let mut unit = |next: &mut dyn FnMut() -> f64| {
+        let unit = |next: &mut dyn FnMut() -> f64| {
             let z = 2.0 * next() - 1.0;
             let phi = TAU * next();
             let r = (1.0 - z * z).sqrt();

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The object suite, measured in one sitting: glint and its peer (Mitsuba 3) on every
-# built-in class at every level of detail, then the chart docs/suite.svg.
+# built-in class at every level of detail, then the chart docs/suite.svg. glint runs twice:
+# on the requests as they are (suite.csv: sunlight and the paper's earthshine) and on
+# sunlight alone (suite-sun.csv), which is what the peer renders and what the chart shows.
 #
 #   benches/suite.sh            # from the repo root; takes a while on an idle machine
 #
@@ -46,9 +48,13 @@ fi
 args=()
 for c in $CLASSES; do args+=(--class "$c"); done
 for d in $DETAILS; do args+=(--detail "$d"); done
+# glint on the requests as they are (earthshine included), then on sunlight alone: what
+# the peer renders, so that the ratio compares the same work
 "$TARGET/release/examples/suite" "${args[@]}" --repeat "$REPEAT" ${THREADS:+--threads "$THREADS"} \
     --out "$OUT/suite.csv" | tee "$OUT/suite.txt"
+"$TARGET/release/examples/suite" "${args[@]}" --repeat "$REPEAT" ${THREADS:+--threads "$THREADS"} \
+    --earthshine off --out "$OUT/suite-sun.csv" | tee "$OUT/suite-sun.txt"
 
 peer_csv=()
 [ -s "$OUT/peer.csv" ] && peer_csv=("$OUT/peer.csv")
-"$TARGET/release/examples/suite_chart" "$OUT/suite.csv" "${peer_csv[@]}" --out docs/suite.svg
+"$TARGET/release/examples/suite_chart" "$OUT/suite-sun.csv" "${peer_csv[@]}" --out docs/suite.svg

@@ -2,7 +2,7 @@
 //! tumbling example request, whole `simulate` calls (preparation included).
 //!
 //! `cargo run --release --example suite -- [--class NAME]... [--detail LEVEL]... [--epochs N]
-//! [--repeat K] [--threads T] [--out results.csv]`
+//! [--repeat K] [--threads T] [--earthshine MODEL] [--out results.csv]`
 //!
 //! Classes: box-wing (`scenes/box-wing-tumbling.json`), rocket-body, fragment, dish-sat,
 //! cubesat (`scenes/<class>.json`); details: coarse, medium, fine (all by default; `as-is` leaves the mesh alone). For
@@ -52,6 +52,10 @@ struct Args {
     /// Integration method for every request (default: the request's own, else auto).
     #[arg(long)]
     method: Option<String>,
+    /// Earthshine model for every request: `off`, `seed` or `sphere` (default: the
+    /// request's own). `off` computes what the peer renders: sunlight alone.
+    #[arg(long)]
+    earthshine: Option<String>,
     /// Write each row's light curve (t, irradiance, sun, earthshine in W/m²) to
     /// DIR/CLASS-DETAIL.csv, to compare methods or builds epoch by epoch.
     #[arg(long, value_name = "DIR")]
@@ -85,6 +89,9 @@ fn load(args: &Args, request: &str, detail: &str) -> Result<Scene, String> {
     }
     if let Some(m) = &args.method {
         json["method"] = m.as_str().into();
+    }
+    if let Some(e) = &args.earthshine {
+        json["illumination"]["earthshine"] = e.as_str().into();
     }
     if let (Some(n), Some(epochs)) = (args.epochs, json.get_mut("epochs")) {
         if let Some(list) = epochs.as_array_mut() {

@@ -5,7 +5,8 @@
 //!
 //! `cargo run --release --example suite_chart -- SUITE.csv [PEER.csv] [--out docs/suite.svg]`
 //!
-//! SUITE.csv is `--example suite --out`; PEER.csv the rows that
+//! SUITE.csv is `--example suite --earthshine off --out` (sunlight alone, what the peer
+//! renders; `benches/suite.sh` passes that run's table); PEER.csv the rows that
 //! `benches/peer/mitsuba_lightcurve.py --summary` appends. Both are read by their header:
 //! `class`, `triangles`, `ms_per_epoch`.
 
@@ -84,7 +85,7 @@ fn draw(glint: &Points, peer: &Points, out: &str) -> Result<(), String> {
     let font = |px: u32| ("sans-serif", px as f64);
     let mut chart = ChartBuilder::on(&root)
         .caption(
-            "Time per epoch against mesh size: glint and Mitsuba 3",
+            "Time per epoch against mesh size, sunlight alone: glint and Mitsuba 3",
             font(20),
         )
         .margin(14)

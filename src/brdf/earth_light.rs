@@ -42,6 +42,8 @@ pub const PIECE_POINTS: usize = 6;
 pub const PROBE_STEP: f64 = 0.1;
 /// Most edge crossings kept along one azimuth.
 const MAX_CUTS: usize = 16;
+/// Runs of an azimuth's probes that a bound may answer whole ([`over_earth`]).
+const SPANS: usize = 4;
 
 /// Earthshine on the faces of one material at one epoch.
 #[derive(Debug, Clone)]
@@ -190,14 +192,17 @@ impl Glint {
             let across = t1 * cp + t2 * sp;
             let at = |s: f64| self.density(frame, n, across, s);
             // Along one azimuth h turns about n × across, and l with it by twice the
-            // angle: the probes' l lie on an arc within `tilt` of its middle one.
+            // angle: the light directions of the probes from u_a to u_b lie on an arc
+            // within α_b − α_a of its middle one (tan α = δ u).
+            let arc = |ua: f64, ub: f64| {
+                let (aa, ab) = ((self.slope * ua).atan(), (self.slope * ub).atan());
+                let h = (n + across * (0.5 * (aa + ab)).tan()).normalize();
+                let middle = 2.0 * self.v.dot(h) * h - self.v;
+                let facing = cr * ab.cos() > self.v.dot(across).abs() * ab.sin();
+                over_earth(&self.earth, middle, ab - aa, facing)
+            };
             let along = match whole {
-                Whole::Mixed => {
-                    let h = (n + across * (0.5 * tilt).tan()).normalize();
-                    let middle = 2.0 * self.v.dot(h) * h - self.v;
-                    let facing = cr * tilt.cos() > self.v.dot(across).abs() * tilt.sin();
-                    over_earth(&self.earth, middle, tilt, facing)
-                }
+                Whole::Mixed => arc(0.0, probes as f64 * PROBE_STEP),
                 known => known,
             };
             match along {
@@ -213,15 +218,31 @@ impl Glint {
                 Whole::Mixed => {}
             }
             let lit_at = |u: f64| self.lit(n, across, u * u);
+            // the probes in runs, each answered whole where the bound can (an edge lies
+            // in one run or two; the others need no probing)
+            let ends: [usize; SPANS + 1] = std::array::from_fn(|i| i * probes / SPANS);
+            let spans: [Whole; SPANS] = std::array::from_fn(|i| {
+                arc(ends[i] as f64 * PROBE_STEP, ends[i + 1] as f64 * PROBE_STEP)
+            });
+            // probe k, at the end of the step from k − 1 in run `span`
+            let probe = |k: usize, span: usize| match spans[span] {
+                Whole::Lit => true,
+                Whole::Dark => false,
+                Whole::Mixed => lit_at(k as f64 * PROBE_STEP),
+            };
             // is the Earth lit along this azimuth, probed every PROBE_STEP in u = √s
             // out to the last node's reach: if so throughout, the plain rule
             let mut cuts = [0.0f64; MAX_CUTS];
             let mut ncut = 1;
-            let first = lit_at(0.0);
+            let first = probe(0, 0);
             let mut prev = first;
+            let mut span = 0;
             for k in 1..=probes {
                 let u = k as f64 * PROBE_STEP;
-                let now = lit_at(u);
+                if k > ends[span + 1] {
+                    span += 1;
+                }
+                let now = probe(k, span);
                 if now != prev && ncut < MAX_CUTS {
                     // an edge (limb or terminator): find it in u
                     let (mut lo, mut hi) = (u - PROBE_STEP, u);

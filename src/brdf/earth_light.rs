@@ -330,7 +330,7 @@ impl Glint {
 /// probes them has v·h > 0 (else a probe finds nothing, and `Lit` is not claimed).
 /// Most faces' lobes, a few degrees wide, lie wholly on the day side, the night
 /// side or off the Earth, and the 32 × 57 probes of [`Glint::lit`] along their
-/// azimuths were 0.9 of an epoch of a rocket body in the default earthshine.
+/// azimuths were two thirds of an epoch of a rocket body in the default earthshine.
 ///
 /// A direction at angle γ from the Earth's centre (within its angular radius θ_E)
 /// meets it at distance t(γ) = D cos γ − √(R² − D² sin² γ), which grows with γ, at a

@@ -7,7 +7,8 @@ use crate::geometry::csr::csr_of;
 use crate::geometry::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
-use rustc_hash::FxHashMap;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// Where another piece meets a face: a segment in the face's plane (m) and the other
 /// piece's triangle (its corners, m, and its face) that meets the face along it. Above
@@ -309,7 +310,7 @@ struct LevelGrid {
 struct Level {
     /// Cell key → its index (CSR: cell `i` holds `binned[start[i]..start[i + 1]]`,
     /// ascending triangle indices); `keys[i]`: cell `i`'s key.
-    index: FxHashMap<u64, u32>,
+    index: HashMap<u64, u32, BuildHasherDefault<CellHash>>,
     keys: Vec<u64>,
     start: Vec<u32>,
     binned: Vec<u32>,
@@ -347,6 +348,35 @@ const RECENT: usize = 64;
 #[inline]
 fn recent_slot(key: u64) -> usize {
     (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 58) as usize
+}
+
+/// The hash of a cell key that keeps neighbours near: its low bits (where the map picks
+/// a slot) are x + P y + Q z, so the cells of one row along x, which neighbouring
+/// triangles find one after another, fall in neighbouring slots (a map of ~100k cells
+/// does not fit in cache, and a mixing hash made each new cell a cache miss: the
+/// cubesat's 200k triangles now bin 4 ms faster of 24, one thread); its top seven bits
+/// (the map's tag within a group) are mixed.
+#[derive(Default)]
+struct CellHash(u64);
+
+impl Hasher for CellHash {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, _: &[u8]) {
+        unreachable!("cell keys are hashed as u64")
+    }
+
+    #[inline]
+    fn write_u64(&mut self, key: u64) {
+        let [x, y, z] = LevelGrid::coords(key).map(u64::from);
+        let near = x
+            .wrapping_add(y.wrapping_mul(0x9E37_79B9))
+            .wrapping_add(z.wrapping_mul(0x85EB_CA77_C2B2_AE63));
+        let tag = key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 57 << 57;
+        self.0 = near & ((1 << 57) - 1) | tag;
+    }
 }
 
 /// A cell whose triangles lie in more than one face.

@@ -60,6 +60,8 @@ struct Glint {
     spec: Brdf,
     slope: f64,
     earth: SunlitEarth,
+    /// What [`over_earth`] needs of `earth`, computed once.
+    bounds: EarthBounds,
     v: DVec3,
     /// cos of the largest angle between the face's mirror direction and the Earth's
     /// centre at which a node can still see the Earth.
@@ -93,6 +95,7 @@ impl<'a> EarthLight<'a> {
                     spec: brdf.split(false),
                     slope,
                     earth: *earth,
+                    bounds: EarthBounds::of(earth),
                     v,
                     cos_reach: if reach >= std::f64::consts::PI {
                         -1.0
@@ -178,7 +181,7 @@ impl Glint {
         // direction (reflecting v about h rather than n turns it by twice their angle);
         // every h of the lobe faces the viewer when n·v > sin(tilt)
         let tilt = self.probe_tilt;
-        let whole = over_earth(&self.earth, mirror, 2.0 * tilt, cr > tilt.sin());
+        let whole = over_earth(&self.bounds, mirror, 2.0 * tilt, cr > tilt.sin());
         if whole == Whole::Dark {
             return 0.0;
         }
@@ -191,6 +194,13 @@ impl Glint {
             let (sp, cp) = (step * (j as f64 + 0.5)).sin_cos();
             let across = t1 * cp + t2 * sp;
             let at = |s: f64| self.density(frame, n, across, s);
+            // the rule where the Earth is lit all along the azimuth
+            let plain = || {
+                nodes
+                    .iter()
+                    .map(|&(s, w)| w * at(s).unwrap_or(0.0))
+                    .sum::<f64>()
+            };
             // Along one azimuth h turns about n × across, and l with it by twice the
             // angle: the light directions of the probes from u_a to u_b lie on an arc
             // within α_b − α_a of its middle one (tan α = δ u).
@@ -199,7 +209,7 @@ impl Glint {
                 let h = (n + across * (0.5 * (aa + ab)).tan()).normalize();
                 let middle = 2.0 * self.v.dot(h) * h - self.v;
                 let facing = cr * ab.cos() > self.v.dot(across).abs() * ab.sin();
-                over_earth(&self.earth, middle, ab - aa, facing)
+                over_earth(&self.bounds, middle, ab - aa, facing)
             };
             let along = match whole {
                 Whole::Mixed => arc(0.0, probes as f64 * PROBE_STEP),
@@ -209,10 +219,7 @@ impl Glint {
                 Whole::Dark => continue,
                 Whole::Lit => {
                     // what the probes would find: lit throughout
-                    sum += nodes
-                        .iter()
-                        .map(|&(s, w)| w * at(s).unwrap_or(0.0))
-                        .sum::<f64>();
+                    sum += plain();
                     continue;
                 }
                 Whole::Mixed => {}
@@ -261,10 +268,7 @@ impl Glint {
             }
             if ncut == 1 {
                 if first {
-                    sum += nodes
-                        .iter()
-                        .map(|&(s, w)| w * at(s).unwrap_or(0.0))
-                        .sum::<f64>();
+                    sum += plain();
                 }
                 continue;
             }
@@ -326,7 +330,7 @@ impl Glint {
 }
 
 /// Whether every light direction within `rho` (rad) of unit `axis` finds the lit
-/// Earth `e`, or every one finds none, when a bound proves it; `facing`: every h that
+/// Earth (`b`), or every one finds none, when a bound proves it; `facing`: every h that
 /// probes them has v·h > 0 (else a probe finds nothing, and `Lit` is not claimed).
 /// Most faces' lobes, a few degrees wide, lie wholly on the day side, the night
 /// side or off the Earth, and the 32 × 57 probes of [`Glint::lit`] along their
@@ -339,13 +343,18 @@ impl Glint {
 /// axis's angles from the centre and from the Sun, and the bilinear t (l·s) to those
 /// ranges' corners. Margins of 1e-9 rad and 1e-9 D keep rounding on the side of
 /// `Mixed`.
-fn over_earth(e: &SunlitEarth, axis: DVec3, rho: f64, facing: bool) -> Whole {
+fn over_earth(b: &EarthBounds, axis: DVec3, rho: f64, facing: bool) -> Whole {
     const ANGLE: f64 = 1e-9;
-    let d = e.object.length();
+    let EarthBounds {
+        d,
+        theta_e,
+        os,
+        centre_dir,
+        sun_dir,
+    } = *b;
     let rho = rho + ANGLE;
-    let theta_e = e.cos_cap.clamp(-1.0, 1.0).acos();
-    let gamma = axis.dot(e.centre_dir).clamp(-1.0, 1.0).acos();
-    let beta = axis.dot(e.sun_dir).clamp(-1.0, 1.0).acos();
+    let gamma = axis.dot(centre_dir).clamp(-1.0, 1.0).acos();
+    let beta = axis.dot(sun_dir).clamp(-1.0, 1.0).acos();
     let (g_lo, g_hi) = ((gamma - rho).max(0.0), gamma + rho);
     if g_lo > theta_e + ANGLE {
         return Whole::Dark;
@@ -357,7 +366,6 @@ fn over_earth(e: &SunlitEarth, axis: DVec3, rho: f64, facing: bool) -> Whole {
         (beta + rho).min(std::f64::consts::PI).cos(),
         (beta - rho).max(0.0).cos(),
     );
-    let os = e.object.dot(e.sun_dir);
     let margin = 1e-9 * d;
     let most = os + if ls_hi >= 0.0 { t_hi } else { t_lo } * ls_hi;
     if most < -margin {
@@ -368,6 +376,30 @@ fn over_earth(e: &SunlitEarth, axis: DVec3, rho: f64, facing: bool) -> Whole {
         return Whole::Lit;
     }
     Whole::Mixed
+}
+
+/// The sunlit Earth as [`over_earth`] reads it, fixed for an epoch: the object's
+/// distance from the Earth's centre D (m), the Earth's angular radius θ_E (rad), o·s (m),
+/// and the unit directions to the Earth's centre and to the Sun.
+#[derive(Debug, Clone, Copy)]
+struct EarthBounds {
+    d: f64,
+    theta_e: f64,
+    os: f64,
+    centre_dir: DVec3,
+    sun_dir: DVec3,
+}
+
+impl EarthBounds {
+    fn of(e: &SunlitEarth) -> EarthBounds {
+        EarthBounds {
+            d: e.object.length(),
+            theta_e: e.cos_cap.clamp(-1.0, 1.0).acos(),
+            os: e.object.dot(e.sun_dir),
+            centre_dir: e.centre_dir,
+            sun_dir: e.sun_dir,
+        }
+    }
 }
 
 /// Probes along each azimuth of the glint rule: every [`PROBE_STEP`] in u out to
@@ -466,7 +498,7 @@ mod tests {
             // axes near the Earth's disk, most of them
             let axis = (centre_dir + unit(&mut next) * (2.0 * next())).normalize();
             let rho = (0.1 + 19.9 * next()).to_radians();
-            let claim = over_earth(&earth, axis, rho, true);
+            let claim = over_earth(&EarthBounds::of(&earth), axis, rho, true);
             counts[claim as usize] += 1;
             if claim == Whole::Mixed {
                 continue;

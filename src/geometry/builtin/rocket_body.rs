@@ -58,6 +58,16 @@ fn nozzle_radius(z: f64, top: f64) -> f64 {
 
 /// The stage at `detail`.
 pub fn build(detail: Detail) -> Mesh {
+    let (profile, materials, sectors) = profile(detail);
+    let mut mesh = Mesh::default();
+    push_revolution(&mut mesh, &profile, &materials, sectors);
+    mesh
+}
+
+/// The stage's profile at `detail`: (radius, z) points (m) from the nose tip round to the
+/// centre of the engine's inner top plate, each segment's material, and the sectors it
+/// is revolved in.
+fn profile(detail: Detail) -> (Vec<(f64, f64)>, Vec<u32>, u32) {
     let (sectors, scale) = detail.pick((24, 1.0), (80, 3.0), (256, 9.4));
     let n = |w: f64| ((w * scale).round() as u32).max(1);
     let rb = R - SKIRT_T;
@@ -78,9 +88,13 @@ pub fn build(detail: Detail) -> Mesh {
         let a = alpha * t;
         (rb * a.cos(), BULKHEAD_Z - BULKHEAD_DEPTH * a.sin())
     };
-    // the engine's walls, sampled more finely near the throat (u² spacing from the top)
+    // The engine's walls, sampled at the same heights below the inner wall's top, so that
+    // the wall is WALL thick between the samples too: sampled at other heights, the
+    // inner wall's chords cut through the outer wall's at the throat (a narrow waist a
+    // chord straddles lies inside it), and the surface crossed itself there.
+    let outer_top = |t: f64| (CHAMBER_R + WALL, top + (inner_top - top) * t);
     let outer = |t: f64| {
-        let z = top + (EXIT_Z - top) * t;
+        let z = inner_top + (EXIT_Z - inner_top) * t;
         (nozzle_radius(z, top) + WALL, z)
     };
     let exit = |t: f64| (EXIT_R + WALL * (1.0 - t), EXIT_Z);
@@ -96,20 +110,21 @@ pub fn build(detail: Detail) -> Mesh {
         (&rim, n(0.34), 1),
         (&skirt_in, n(2.0), 1),
         (&bulkhead, n(6.0), 0),
+        (&outer_top, 1, 2),
         (&outer, n(8.5), 2),
         (&exit, n(0.34), 2),
         (&inner, n(8.5), 2),
-        (&plate, n(2.0), 2),
+        // one segment fewer than the walls' share, for the outer wall's top
+        (&plate, n(2.0) - 1, 2),
     ]);
-    let mut mesh = Mesh::default();
-    push_revolution(&mut mesh, &profile, &materials, sectors);
-    mesh
+    (profile, materials, sectors)
 }
 
 #[cfg(test)]
 mod tests {
     use super::super::checks::*;
     use super::*;
+    use glam::DVec2;
 
     #[test]
     fn three_levels_of_a_closed_outward_stage() {
@@ -128,6 +143,49 @@ mod tests {
             // the tank's volume dominates: ~π·1.5²·(5.3 + 1.5 + 0.8 − 0.47) m³
             let v = volume(&mesh);
             assert!((40.0..55.0).contains(&v), "{v}");
+        }
+    }
+
+    /// Distance (m) between segments a–b and c–d of the (r, z) plane.
+    fn segment_distance(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
+        let cross = |o: DVec2, p: DVec2, q: DVec2| (p - o).perp_dot(q - o);
+        let (d1, d2) = (cross(a, b, c), cross(a, b, d));
+        let (d3, d4) = (cross(c, d, a), cross(c, d, b));
+        if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+            return 0.0;
+        }
+        let to_segment = |p: DVec2, a: DVec2, b: DVec2| {
+            let e = b - a;
+            let t = ((p - a).dot(e) / e.length_squared()).clamp(0.0, 1.0);
+            (p - (a + e * t)).length()
+        };
+        to_segment(a, c, d)
+            .min(to_segment(b, c, d))
+            .min(to_segment(c, a, b))
+            .min(to_segment(d, a, b))
+    }
+
+    #[test]
+    fn the_surface_never_crosses_itself() {
+        // A surface of revolution crosses itself exactly where its profile does: every
+        // sector maps the (r, z) half-plane into the body by one scaling of r (the point
+        // of its chord), one to one. So no two segments of the profile that share no
+        // point may meet (within a micron). Sampled at other heights, the engine's
+        // inner wall cut through its outer wall at the throat at coarse and medium detail.
+        for d in Detail::ALL {
+            let (profile, _, _) = profile(d);
+            let p: Vec<DVec2> = profile.iter().map(|&(r, z)| DVec2::new(r, z)).collect();
+            assert!(p.iter().all(|q| q.x >= 0.0), "{}", d.name());
+            for i in 0..p.len() - 1 {
+                for j in i + 2..p.len() - 1 {
+                    let gap = segment_distance(p[i], p[i + 1], p[j], p[j + 1]);
+                    assert!(
+                        gap > 1e-6,
+                        "{}: segments {i} and {j} are {gap:.2e} m apart",
+                        d.name()
+                    );
+                }
+            }
         }
     }
 

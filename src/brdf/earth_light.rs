@@ -44,6 +44,9 @@ pub const PROBE_STEP: f64 = 0.1;
 const MAX_CUTS: usize = 16;
 /// Runs of an azimuth's probes that a bound may answer whole ([`over_earth`]).
 const SPANS: usize = 4;
+/// Fewest beams for which a face's earthshine is bounded over them all at once
+/// ([`AllBeams`]): the paper's single beam is cheaper evaluated.
+const MIN_BEAMS: usize = 4;
 
 /// Earthshine on the faces of one material at one epoch.
 #[derive(Debug, Clone)]
@@ -52,7 +55,102 @@ pub struct EarthLight<'a> {
     /// What the beams evaluate when not the whole BRDF (its diffuse part).
     beam_brdf: Option<Brdf>,
     beams: Vec<(f64, Directions)>,
+    /// Bounds over all the beams at once, when every beam's model is constant away from
+    /// its lobe.
+    all: Option<AllBeams>,
     glint: Option<Glint>,
+}
+
+/// Every beam at once: the cones holding their light directions and their lobes' half
+/// vectors, and their sum. A face that every beam lights and no beam's lobe reaches
+/// (most faces that see the lit Earth) takes Σ_b E_b k_b (n·l_b)(n·v) = (n·T)(n·v) from
+/// the one vector T = Σ_b E_b k_b l_b, and a face that no beam lights takes nothing,
+/// instead of a BRDF per beam: the `sphere` model's hundreds of beams were most of an
+/// epoch on a finely meshed object. The same holds for a cone of normals (patch sums).
+#[derive(Debug, Clone)]
+struct AllBeams {
+    /// Holds every beam's light direction (widened past rounding: a bound from it holds
+    /// for each beam's n·l as computed).
+    lights: Cone,
+    /// Holds every lobe's half vector; `None` when no beam has a lobe.
+    halves: Option<Cone>,
+    /// The smallest (n·h)² under which a beam's lobe is zero, over the beams with one.
+    below: f64,
+    /// T = Σ_b E_b k_b l_b (k_b the diffuse constant, sr⁻¹), W/(m²·sr), summed as
+    /// [`EarthLight::linear_over`] sums it beam by beam.
+    sum: DVec3,
+}
+
+impl AllBeams {
+    /// The bounds, when every beam's model is constant away from its lobe and there are
+    /// enough beams for them to pay (a bound costs about what a beam does).
+    fn of(beams: &[(f64, Directions)]) -> Option<AllBeams> {
+        if beams.len() < MIN_BEAMS {
+            return None;
+        }
+        let lobe = |d: &Directions| {
+            d.away
+                .as_ref()
+                .filter(|a| a.below.is_finite() && a.h != DVec3::ZERO)
+                .map(|a| a.h)
+        };
+        let (mut sum, mut axis, mut h_axis) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        let mut below = f64::INFINITY;
+        for (irradiance, d) in beams {
+            let away = d.away.as_ref()?;
+            sum += (irradiance * away.diffuse) * d.light();
+            axis += d.light();
+            if let Some(h) = lobe(d) {
+                h_axis += h;
+                below = below.min(away.below);
+            }
+        }
+        let lights = Cone::about(axis.try_normalize()?, beams.iter().map(|(_, d)| d.light()));
+        let halves = if below.is_finite() {
+            let hs = beams.iter().filter_map(|(_, d)| lobe(d));
+            Some(Cone::about(h_axis.try_normalize()?, hs))
+        } else {
+            None
+        };
+        Some(AllBeams {
+            lights,
+            halves,
+            below,
+            sum,
+        })
+    }
+
+    /// Is every beam above every normal of `cone` (`Some(true)`), below every one
+    /// (`Some(false)`), with no lobe reaching any of them either way; `None` when the
+    /// bounds cannot tell.
+    fn over(&self, cone: &Cone) -> Option<bool> {
+        // the normals against the lights: the cone widened by the lights' half-angle,
+        // against their axis
+        let wide = Cone::new(cone.axis, cone.half() + self.lights.half());
+        let lit = wide.min_dot(self.lights.axis) > 0.0;
+        if !lit {
+            return (wide.max_dot(self.lights.axis) < 0.0).then_some(false);
+        }
+        let clear = self.halves.is_none_or(|h| {
+            let most = Cone::new(cone.axis, cone.half() + h.half()).max_dot(h.axis);
+            most <= 0.0 || most * most < self.below
+        });
+        clear.then_some(true)
+    }
+
+    /// [`AllBeams::over`] for one normal `n`.
+    #[inline]
+    fn at(&self, n: DVec3) -> Option<bool> {
+        if self.lights.min_dot(n) > 0.0 {
+            let clear = self.halves.is_none_or(|h| {
+                let most = h.max_dot(n);
+                most <= 0.0 || most * most < self.below
+            });
+            clear.then_some(true)
+        } else {
+            (self.lights.max_dot(n) < 0.0).then_some(false)
+        }
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -108,7 +206,7 @@ impl<'a> EarthLight<'a> {
             _ => None,
         };
         let beam_brdf = glint.as_ref().map(|_| brdf.split(true));
-        let beams = shine
+        let beams: Vec<(f64, Directions)> = shine
             .beams
             .iter()
             .map(|b| {
@@ -118,10 +216,12 @@ impl<'a> EarthLight<'a> {
                 )
             })
             .collect();
+        let all = AllBeams::of(&beams);
         EarthLight {
             brdf,
             beam_brdf,
             beams,
+            all,
             glint,
         }
     }
@@ -129,16 +229,34 @@ impl<'a> EarthLight<'a> {
     /// Σ f·cosθi·cosθr·E over the earthshine, W/(m²·sr) per m² of face, given `cr` = n·v.
     #[inline]
     pub fn projected_given(&self, frame: &Frame, cr: f64) -> f64 {
-        let brdf = self.beam_brdf.as_ref().unwrap_or(self.brdf);
-        let beams: f64 = self
-            .beams
-            .iter()
-            .map(|(irradiance, d)| irradiance * d.projected_given(brdf, frame, cr))
-            .sum();
+        let beams = self.beams_given(frame, cr);
         match &self.glint {
             Some(g) if cr > 0.0 => beams + g.projected_given(frame, cr),
             _ => beams,
         }
+    }
+
+    /// The beams' part of [`EarthLight::projected_given`]: at once where [`AllBeams`]
+    /// decides the face, else beam by beam.
+    #[inline]
+    fn beams_given(&self, frame: &Frame, cr: f64) -> f64 {
+        if let Some(all) = self.all.as_ref().filter(|_| cr > 0.0) {
+            match all.at(frame.n) {
+                Some(true) => return cr * frame.n.dot(all.sum),
+                Some(false) => return 0.0,
+                None => {}
+            }
+        }
+        self.beams_one_by_one(frame, cr)
+    }
+
+    /// Σ_b E_b f_b·cosθi·cosθr, each beam's BRDF evaluated.
+    fn beams_one_by_one(&self, frame: &Frame, cr: f64) -> f64 {
+        let brdf = self.beam_brdf.as_ref().unwrap_or(self.brdf);
+        self.beams
+            .iter()
+            .map(|(irradiance, d)| irradiance * d.projected_given(brdf, frame, cr))
+            .sum()
     }
 
     /// The earthshine's f·cosθi·cosθr over a cone of normals that all face the view,
@@ -157,6 +275,20 @@ impl<'a> EarthLight<'a> {
                 return None;
             }
         }
+        if let Some(all) = &self.all {
+            // what every beam's own test would find, at once
+            if let (Some(lit), Some((_, d))) = (all.over(cone), self.beams.first()) {
+                if cone.min_dot(d.v) <= 0.0 {
+                    return None;
+                }
+                return Some(if lit { all.sum } else { DVec3::ZERO });
+            }
+        }
+        self.beams_linear_one_by_one(cone)
+    }
+
+    /// The beams' L of [`EarthLight::linear_over`], each beam's own test made.
+    fn beams_linear_one_by_one(&self, cone: &Cone) -> Option<DVec3> {
         let mut sum = DVec3::ZERO;
         for (irradiance, d) in &self.beams {
             sum += (irradiance * d.linear_over(cone)?) * d.light();
@@ -519,6 +651,79 @@ mod tests {
             }
         }
         assert!(counts.iter().all(|&c| c > 100), "{counts:?}");
+    }
+
+    /// Where [`AllBeams`] answers for every beam at once, each beam evaluated one by one
+    /// agrees: on single faces within 1e-12 of the larger value (the sum as one vector
+    /// differs from the beams' own products in rounding only; a beam wrongly taken as
+    /// lit, or a lobe wrongly taken as away, misses by far more), exactly where no beam
+    /// lights the face, and bit for bit on cones of normals (the same sum, in the same
+    /// order). Over Earths from LEO to GEO at any phase and views, materials with no lobe,
+    /// a narrow and a wide one; each answer (lit, dark, undecided) comes up often.
+    #[test]
+    fn the_beams_taken_at_once_agree_with_the_beams_one_by_one() {
+        let mut rnd = crate::test_rng(7);
+        let unit = crate::test_unit;
+        let brdfs = [
+            Brdf::Lambert(crate::brdf::Lambert { albedo: 0.3 }),
+            Brdf::SeedMicrofacet(crate::brdf::SeedMicrofacet::new(0.1, 0.5, 0.3, 0.18, 3.6)),
+            Brdf::SeedMicrofacet(crate::brdf::SeedMicrofacet::new(0.2, 0.3, 0.05, 0.2, 2.5)),
+        ];
+        let (mut faces, mut cones) = ([0usize; 3], [0usize; 3]);
+        for trial in 0..600 {
+            let brdf = &brdfs[trial % brdfs.len()];
+            let distance = EARTH_RADIUS_M + 4e5 + rnd() * 3.6e7;
+            let shine = crate::radiometry::earth::sphere(
+                -unit(&mut rnd) * distance,
+                unit(&mut rnd),
+                0.3,
+                1361.0,
+            );
+            let v = unit(&mut rnd);
+            let light = EarthLight::new(brdf, &shine, v);
+            let Some(all) = &light.all else {
+                continue;
+            };
+            for _ in 0..50 {
+                let n = unit(&mut rnd);
+                let cr = n.dot(v);
+                if cr <= 0.0 {
+                    continue;
+                }
+                let frame = Frame {
+                    n,
+                    t: n.any_orthonormal_vector(),
+                };
+                let (got, want) = (
+                    light.beams_given(&frame, cr),
+                    light.beams_one_by_one(&frame, cr),
+                );
+                let answer = all.at(n);
+                faces[answer.map_or(2, usize::from)] += 1;
+                match answer {
+                    Some(false) => assert_eq!(got, 0.0),
+                    _ => assert!(
+                        (got - want).abs() <= 1e-12 * got.abs().max(want.abs()),
+                        "{brdf:?} n {n} v {v}: {got} against {want}"
+                    ),
+                }
+                let cone = Cone::new(n, 0.3 * rnd());
+                if cone.min_dot(v) <= 0.0 {
+                    continue;
+                }
+                let answer = all.over(&cone);
+                cones[answer.map_or(2, usize::from)] += 1;
+                if let Some(lit) = answer {
+                    let got = if lit { all.sum } else { DVec3::ZERO };
+                    let want = light.beams_linear_one_by_one(&cone);
+                    assert_eq!(Some(got), want, "{brdf:?} {cone:?} v {v}");
+                }
+            }
+        }
+        assert!(
+            faces.iter().chain(&cones).all(|&c| c > 300),
+            "faces {faces:?}, cones {cones:?}"
+        );
     }
 
     #[test]

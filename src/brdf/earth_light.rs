@@ -74,6 +74,9 @@ struct AllBeams {
     lights: Cone,
     /// Holds every lobe's half vector; `None` when no beam has a lobe.
     halves: Option<Cone>,
+    /// The two cones' half-angles, rad (what a cone of normals is widened by).
+    lights_half: f64,
+    halves_half: f64,
     /// The smallest (n·h)² under which a beam's lobe is zero, over the beams with one.
     below: f64,
     /// T = Σ_b E_b k_b l_b (k_b the diffuse constant, sr⁻¹), W/(m²·sr), summed as
@@ -114,6 +117,8 @@ impl AllBeams {
         };
         Some(AllBeams {
             lights,
+            lights_half: lights.half(),
+            halves_half: halves.map_or(0.0, |h| h.half()),
             halves,
             below,
             sum,
@@ -126,13 +131,14 @@ impl AllBeams {
     fn over(&self, cone: &Cone) -> Option<bool> {
         // the normals against the lights: the cone widened by the lights' half-angle,
         // against their axis
-        let wide = Cone::new(cone.axis, cone.half() + self.lights.half());
+        let half = cone.half();
+        let wide = Cone::new(cone.axis, half + self.lights_half);
         let lit = wide.min_dot(self.lights.axis) > 0.0;
         if !lit {
             return (wide.max_dot(self.lights.axis) < 0.0).then_some(false);
         }
         let clear = self.halves.is_none_or(|h| {
-            let most = Cone::new(cone.axis, cone.half() + h.half()).max_dot(h.axis);
+            let most = Cone::new(cone.axis, half + self.halves_half).max_dot(h.axis);
             most <= 0.0 || most * most < self.below
         });
         clear.then_some(true)

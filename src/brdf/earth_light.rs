@@ -65,7 +65,7 @@ pub struct EarthLight<'a> {
 /// vectors, and their sum. A face that every beam lights and no beam's lobe reaches
 /// (most faces that see the lit Earth) takes Σ_b E_b k_b (n·l_b)(n·v) = (n·T)(n·v) from
 /// the one vector T = Σ_b E_b k_b l_b, and a face that no beam lights takes nothing,
-/// instead of a BRDF per beam: the `sphere` model's hundreds of beams were most of an
+/// instead of a BRDF per beam: the `sphere` model's 48–240 beams were most of an
 /// epoch on a finely meshed object. The same holds for a cone of normals (patch sums).
 #[derive(Debug, Clone)]
 struct AllBeams {

@@ -132,10 +132,9 @@ impl AllBeams {
         // the normals against the lights: the cone widened by the lights' half-angle,
         // against their axis
         let half = cone.half();
-        let wide = Cone::new(cone.axis, half + self.lights_half);
-        let lit = wide.min_dot(self.lights.axis) > 0.0;
-        if !lit {
-            return (wide.max_dot(self.lights.axis) < 0.0).then_some(false);
+        let (least, most) = Cone::new(cone.axis, half + self.lights_half).dots(self.lights.axis);
+        if least <= 0.0 {
+            return (most < 0.0).then_some(false);
         }
         let clear = self.halves.is_none_or(|h| {
             let most = Cone::new(cone.axis, half + self.halves_half).max_dot(h.axis);
@@ -147,15 +146,15 @@ impl AllBeams {
     /// [`AllBeams::over`] for one normal `n`.
     #[inline]
     fn at(&self, n: DVec3) -> Option<bool> {
-        if self.lights.min_dot(n) > 0.0 {
-            let clear = self.halves.is_none_or(|h| {
-                let most = h.max_dot(n);
-                most <= 0.0 || most * most < self.below
-            });
-            clear.then_some(true)
-        } else {
-            (self.lights.max_dot(n) < 0.0).then_some(false)
+        let (least, most) = self.lights.dots(n);
+        if least <= 0.0 {
+            return (most < 0.0).then_some(false);
         }
+        let clear = self.halves.is_none_or(|h| {
+            let most = h.max_dot(n);
+            most <= 0.0 || most * most < self.below
+        });
+        clear.then_some(true)
     }
 }
 
@@ -607,19 +606,8 @@ mod tests {
     /// comes up at least a hundred times.
     #[test]
     fn a_lobe_claimed_wholly_lit_or_dark_is_so_at_every_direction_of_its_cone() {
-        let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let unit = |next: &mut dyn FnMut() -> f64| {
-            let z = 2.0 * next() - 1.0;
-            let phi = TAU * next();
-            let r = (1.0 - z * z).sqrt();
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        };
+        let mut next = crate::test_rng(0x9E37_79B9_7F4A_7C15);
+        let unit = crate::test_unit;
         let mut counts = [0usize; 3];
         for _ in 0..3000 {
             let distance = EARTH_RADIUS_M + 4e5 + next() * 3.6e7;

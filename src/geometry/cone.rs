@@ -73,6 +73,24 @@ impl Cone {
             c * self.cos - s * self.sin
         }
     }
+
+    /// ([`Cone::min_dot`], [`Cone::max_dot`]) of unit `d`, its angle from the axis
+    /// found once.
+    #[inline]
+    pub fn dots(&self, d: DVec3) -> (f64, f64) {
+        let (c, s) = self.angle(d);
+        let least = if c <= -self.cos {
+            -1.0
+        } else {
+            c * self.cos - s * self.sin
+        };
+        let most = if c >= self.cos {
+            1.0
+        } else {
+            c * self.cos + s * self.sin
+        };
+        (least, most)
+    }
 }
 
 #[cfg(test)]

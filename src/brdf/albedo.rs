@@ -83,10 +83,48 @@ pub fn normalised_seed(
     Ok(SeedMicrofacet::new(kd, km / a, slope_rms, n, k))
 }
 
+/// Models whose albedo [`remembered`] keeps (the latest asked about).
+const REMEMBERED: usize = 64;
+
+/// [`albedo`], remembered for the last [`REMEMBERED`] models asked about in this process:
+/// a service asked again and again about the same materials integrates each once. Its
+/// six integrations are most of a small request's time (a 2k-triangle object, one
+/// epoch).
+pub fn remembered(brdf: &Brdf) -> Albedo {
+    static SEEN: std::sync::Mutex<Vec<(Brdf, Albedo)>> = std::sync::Mutex::new(Vec::new());
+    let known = |seen: &[(Brdf, Albedo)]| seen.iter().find(|(b, _)| b == brdf).map(|&(_, a)| a);
+    // a poisoned lock still holds whole entries: each is pushed complete
+    if let Some(a) = known(&SEEN.lock().unwrap_or_else(|e| e.into_inner())) {
+        return a;
+    }
+    // integrated outside the lock: requests on other threads wait for nothing
+    let a = albedo(brdf);
+    let mut seen = SEEN.lock().unwrap_or_else(|e| e.into_inner());
+    if known(&seen).is_none() {
+        if seen.len() == REMEMBERED {
+            seen.remove(0);
+        }
+        seen.push((brdf.clone(), a));
+    }
+    a
+}
+
 /// ρ(θi) for light at incidence `theta_i` (rad, below π/2) and azimuth `phi_i` from the
 /// face's tangent (rad).
 pub fn directional(brdf: &Brdf, theta_i: f64, phi_i: f64) -> f64 {
     directional_with(brdf, theta_i, phi_i, POLAR, AZIMUTHS)
+}
+
+/// The `polar`-node Gauss–Legendre rule on [0, 1] (node, weight): [`POLAR`]'s found
+/// once per process. Its Newton iterations cost about a quarter of what an albedo's
+/// integration does, and every request asks for six albedos per material.
+fn polar_nodes(polar: usize) -> std::borrow::Cow<'static, [(f64, f64)]> {
+    static NODES: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
+    if polar == POLAR {
+        std::borrow::Cow::Borrowed(NODES.get_or_init(|| gauss_legendre(POLAR)))
+    } else {
+        std::borrow::Cow::Owned(gauss_legendre(polar))
+    }
 }
 
 /// [`directional`] with `polar` Gauss–Legendre nodes and `azimuths` azimuths.
@@ -98,7 +136,7 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
     let ci = theta_i.cos();
     let l = DVec3::new(theta_i.sin() * phi_i.cos(), theta_i.sin() * phi_i.sin(), ci);
     // (node, weight) on [0, 1]
-    let nodes = gauss_legendre(polar);
+    let nodes = polar_nodes(polar);
     let d_phi = std::f64::consts::TAU / azimuths as f64;
     // the half vector's azimuth from the plane of incidence: the lobe is mirror-symmetric
     // about that plane for an isotropic model, and for an anisotropic one lit along an
@@ -112,7 +150,13 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
     } else {
         (azimuths, 1.0)
     };
-    let azimuth = |k: usize| phi_i + (k as f64 + 0.5) * d_phi;
+    // the half vector's azimuths' (cos, sin), the same for every polar node
+    let azimuth: Vec<(f64, f64)> = (0..turns)
+        .map(|k| {
+            let (s, c) = (phi_i + (k as f64 + 0.5) * d_phi).sin_cos();
+            (c, s)
+        })
+        .collect();
     // f·cosθr at view v: the projected value over cosθi
     let f_cos = |b: &Brdf, v: DVec3| b.projected(&frame, l, v) / ci;
 
@@ -120,7 +164,7 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
     // model's diffuse term depends on cosθi and cosθr only, so one azimuth stands for 2π
     let diffuse = brdf.split(true);
     let mut sum = 0.0;
-    for &(mu, wi) in &nodes {
+    for &(mu, wi) in nodes.iter() {
         let v = DVec3::new((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
         sum += wi * std::f64::consts::TAU * f_cos(&diffuse, v);
     }
@@ -129,12 +173,11 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
     let specular = brdf.split(false);
     if let Some((_, slope)) = brdf.lobe_slopes() {
         let a_max = (8.0 * slope).atan().min(std::f64::consts::FRAC_PI_2);
-        for &(t, wi) in &nodes {
+        for &(t, wi) in nodes.iter() {
             let a = a_max * t;
             let (sa, ca) = a.sin_cos();
-            for k in 0..turns {
-                let p = azimuth(k);
-                let h = DVec3::new(sa * p.cos(), sa * p.sin(), ca);
+            for &(cp, sp) in &azimuth {
+                let h = DVec3::new(sa * cp, sa * sp, ca);
                 let lh = l.dot(h);
                 if lh <= 0.0 {
                     continue;
@@ -155,6 +198,25 @@ fn directional_with(brdf: &Brdf, theta_i: f64, phi_i: f64, polar: usize, azimuth
 mod tests {
     use super::*;
     use crate::brdf::{AshikhminShirley, Lambert, RoughConductor, SeedMicrofacet};
+
+    #[test]
+    fn a_remembered_albedo_is_the_albedo() {
+        // asked twice (the second from the memory) and after more models than it keeps
+        let b = Brdf::SeedMicrofacet(SeedMicrofacet::new(0.3, 0.2, 0.15, 1.4, 0.1));
+        let a = albedo(&b);
+        assert_eq!(remembered(&b), a);
+        assert_eq!(remembered(&b), a);
+        for i in 0..REMEMBERED + 1 {
+            remembered(&Brdf::Lambert(Lambert {
+                albedo: 0.01 * (i + 1) as f64,
+            }));
+        }
+        assert_eq!(remembered(&b), a);
+        assert_eq!(
+            remembered(&Brdf::Lambert(Lambert { albedo: 0.5 })).normal,
+            albedo(&Brdf::Lambert(Lambert { albedo: 0.5 })).normal
+        );
+    }
 
     #[test]
     fn lambert_reflects_its_albedo_at_every_incidence() {

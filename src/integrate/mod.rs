@@ -482,7 +482,7 @@ fn material_albedos(scene: &Scene) -> (Vec<MaterialAlbedo>, Vec<String>) {
     let found: Vec<_> = scene
         .materials
         .par_iter()
-        .map(|m| crate::brdf::albedo::albedo(&m.brdf))
+        .map(|m| crate::brdf::albedo::remembered(&m.brdf))
         .collect();
     let albedos = scene
         .materials

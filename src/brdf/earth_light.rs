@@ -172,6 +172,47 @@ struct Glint {
     /// The largest tilt of h from the face's normal that a probe reaches, rad: the
     /// probes' light directions lie within twice it of the mirror direction.
     probe_tilt: f64,
+    /// The arcs an azimuth's probes are bounded on: each run of them ([`SPANS`]), then
+    /// all of them. They depend on the lobe's slope alone, so they are found once per
+    /// epoch and material, not per face and azimuth.
+    arcs: [Arc; SPANS + 1],
+}
+
+/// The tilts of h from n, α = atan(δ u), of a run of probes from u_a to u_b, as
+/// [`Glint::projected_given`] bounds their light directions: tan of the middle tilt, cos
+/// and sin of the last, and the run's width α_b − α_a (rad).
+#[derive(Debug, Clone, Copy)]
+struct Arc {
+    tan_mid: f64,
+    cos_b: f64,
+    sin_b: f64,
+    width: f64,
+}
+
+impl Arc {
+    fn new(slope: f64, ua: f64, ub: f64) -> Arc {
+        let (aa, ab) = ((slope * ua).atan(), (slope * ub).atan());
+        Arc {
+            tan_mid: (0.5 * (aa + ab)).tan(),
+            cos_b: ab.cos(),
+            sin_b: ab.sin(),
+            width: ab - aa,
+        }
+    }
+}
+
+/// The probes' runs: run i from probe `ends[i]` to `ends[i + 1]`.
+fn span_ends() -> [usize; SPANS + 1] {
+    std::array::from_fn(|i| i * probes() / SPANS)
+}
+
+/// (sin, cos) of the glint rule's azimuths.
+fn glint_azimuths() -> &'static [(f64, f64); GLINT_AZIMUTHS] {
+    static AZ: std::sync::OnceLock<[(f64, f64); GLINT_AZIMUTHS]> = std::sync::OnceLock::new();
+    AZ.get_or_init(|| {
+        let step = TAU / GLINT_AZIMUTHS as f64;
+        std::array::from_fn(|j| (step * (j as f64 + 0.5)).sin_cos())
+    })
 }
 
 /// What every probe of a face's lobe finds ([`over_earth`]).
@@ -206,6 +247,17 @@ impl<'a> EarthLight<'a> {
                         reach.cos()
                     },
                     probe_tilt: (slope * probes() as f64 * PROBE_STEP).atan(),
+                    arcs: {
+                        let ends = span_ends();
+                        std::array::from_fn(|i| {
+                            let (a, b) = if i < SPANS {
+                                (ends[i], ends[i + 1])
+                            } else {
+                                (0, probes())
+                            };
+                            Arc::new(slope, a as f64 * PROBE_STEP, b as f64 * PROBE_STEP)
+                        })
+                    },
                 })
             }
             _ => None,
@@ -327,8 +379,8 @@ impl Glint {
         let nodes = laguerre();
         let probes = probes();
         let mut sum = 0.0;
-        for j in 0..GLINT_AZIMUTHS {
-            let (sp, cp) = (step * (j as f64 + 0.5)).sin_cos();
+        let ends = span_ends();
+        for &(sp, cp) in glint_azimuths() {
             let across = t1 * cp + t2 * sp;
             let at = |s: f64| self.density(frame, n, across, s);
             // the rule where the Earth is lit all along the azimuth
@@ -341,15 +393,14 @@ impl Glint {
             // Along one azimuth h turns about n × across, and l with it by twice the
             // angle: the light directions of the probes from u_a to u_b lie on an arc
             // within α_b − α_a of its middle one (tan α = δ u).
-            let arc = |ua: f64, ub: f64| {
-                let (aa, ab) = ((self.slope * ua).atan(), (self.slope * ub).atan());
-                let h = (n + across * (0.5 * (aa + ab)).tan()).normalize();
+            let arc = |a: &Arc| {
+                let h = (n + across * a.tan_mid).normalize();
                 let middle = 2.0 * self.v.dot(h) * h - self.v;
-                let facing = cr * ab.cos() > self.v.dot(across).abs() * ab.sin();
-                over_earth(&self.bounds, middle, ab - aa, facing)
+                let facing = cr * a.cos_b > self.v.dot(across).abs() * a.sin_b;
+                over_earth(&self.bounds, middle, a.width, facing)
             };
             let along = match whole {
-                Whole::Mixed => arc(0.0, probes as f64 * PROBE_STEP),
+                Whole::Mixed => arc(&self.arcs[SPANS]),
                 known => known,
             };
             match along {
@@ -364,10 +415,7 @@ impl Glint {
             let lit_at = |u: f64| self.lit(n, across, u * u);
             // the probes in runs, each answered whole where the bound can (an edge lies
             // in one run or two; the others need no probing)
-            let ends: [usize; SPANS + 1] = std::array::from_fn(|i| i * probes / SPANS);
-            let spans: [Whole; SPANS] = std::array::from_fn(|i| {
-                arc(ends[i] as f64 * PROBE_STEP, ends[i + 1] as f64 * PROBE_STEP)
-            });
+            let spans: [Whole; SPANS] = std::array::from_fn(|i| arc(&self.arcs[i]));
             // probe k, at the end of the step from k − 1 in run `span`
             let probe = |k: usize, span: usize| match spans[span] {
                 Whole::Lit => true,

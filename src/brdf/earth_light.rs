@@ -382,12 +382,14 @@ impl Glint {
         let ends = span_ends();
         for &(sp, cp) in glint_azimuths() {
             let across = t1 * cp + t2 * sp;
-            let at = |s: f64| self.density(frame, n, across, s);
+            // the integrand at u = √s
+            let at = |u: f64| self.density(frame, n, across, u);
             // the rule where the Earth is lit all along the azimuth
             let plain = || {
                 nodes
                     .iter()
-                    .map(|&(s, w)| w * at(s).unwrap_or(0.0))
+                    .zip(laguerre_roots())
+                    .map(|(&(_, w), &u)| w * at(u).unwrap_or(0.0))
                     .sum::<f64>()
             };
             // Along one azimuth h turns about n × across, and l with it by twice the
@@ -412,7 +414,7 @@ impl Glint {
                 }
                 Whole::Mixed => {}
             }
-            let lit_at = |u: f64| self.lit(n, across, u * u);
+            let lit_at = |u: f64| self.lit(n, across, u);
             // the probes in runs, each answered whole where the bound can (an edge lies
             // in one run or two; the others need no probing)
             let spans: [Whole; SPANS] = std::array::from_fn(|i| arc(&self.arcs[i]));
@@ -467,14 +469,14 @@ impl Glint {
                             .iter()
                             .map(|&(x, w)| {
                                 let u = ua + (ub - ua) * x;
-                                w * (ub - ua) * 2.0 * u * at(u * u).unwrap_or(0.0)
+                                w * (ub - ua) * 2.0 * u * at(u).unwrap_or(0.0)
                             })
                             .sum::<f64>();
                     } else {
                         // lit from ua on: Gauss–Laguerre shifted to s = ua² + s'
                         sum += nodes
                             .iter()
-                            .map(|&(s, w)| w * at(ua * ua + s).unwrap_or(0.0))
+                            .map(|&(s, w)| w * at((ua * ua + s).sqrt()).unwrap_or(0.0))
                             .sum::<f64>();
                     }
                 }
@@ -484,20 +486,22 @@ impl Glint {
         sum * step
     }
 
-    /// Is the Earth lit along the light direction of the node at s on this azimuth?
+    /// Is the Earth lit along the light direction of the probe at u = √s on this
+    /// azimuth? (Given u, not s: √(u²) is u, so the root would only be paid for.)
     #[inline]
-    fn lit(&self, n: DVec3, across: DVec3, s: f64) -> bool {
-        let t = self.slope * s.sqrt();
+    fn lit(&self, n: DVec3, across: DVec3, u: f64) -> bool {
+        let t = self.slope * u;
         let h = (n + across * t).normalize();
         let vh = self.v.dot(h);
         vh > 0.0 && self.earth.radiance(2.0 * vh * h - self.v) > 0.0
     }
 
-    /// The integrand in s = tan²α/δ² along the azimuth `across` (a unit vector ⟂ n):
-    /// 2(v·h)δ²cos³α · P_spec(l) · L(l); `None` where the Earth is dark or absent there.
+    /// The integrand in s = tan²α/δ² along the azimuth `across` (a unit vector ⟂ n),
+    /// given u = √s (its callers have u, or a node's root found once): 2(v·h)δ²cos³α ·
+    /// P_spec(l) · L(l); `None` where the Earth is dark or absent there.
     #[inline]
-    fn density(&self, frame: &Frame, n: DVec3, across: DVec3, s: f64) -> Option<f64> {
-        let t = self.slope * s.sqrt();
+    fn density(&self, frame: &Frame, n: DVec3, across: DVec3, u: f64) -> Option<f64> {
+        let t = self.slope * u;
         let cos_a = 1.0 / (1.0 + t * t).sqrt();
         let h = (n + across * t) * cos_a;
         let vh = self.v.dot(h);
@@ -597,6 +601,13 @@ fn probes() -> usize {
 fn legendre() -> &'static [(f64, f64)] {
     static NODES: std::sync::OnceLock<Vec<(f64, f64)>> = std::sync::OnceLock::new();
     NODES.get_or_init(|| gauss_legendre(PIECE_POINTS))
+}
+
+/// The square roots of [`laguerre`]'s nodes: u = √s, at which the glint rule's integrand
+/// is evaluated.
+fn laguerre_roots() -> &'static [f64] {
+    static ROOTS: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    ROOTS.get_or_init(|| laguerre().iter().map(|&(s, _)| s.sqrt()).collect())
 }
 
 /// Gauss–Laguerre nodes s_i and weights W_i·e^(s_i) for ∫₀^∞ e^−s g(s) ds

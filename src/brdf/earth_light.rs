@@ -172,6 +172,8 @@ struct Glint {
     /// The largest tilt of h from the face's normal that a probe reaches, rad: the
     /// probes' light directions lie within twice it of the mirror direction.
     probe_tilt: f64,
+    /// The probes' runs: run i from probe `ends[i]` to `ends[i + 1]`.
+    ends: [usize; SPANS + 1],
     /// The arcs an azimuth's probes are bounded on: each run of them ([`SPANS`]), then
     /// all of them. They depend on the lobe's slope alone, so they are found once per
     /// epoch and material, not per face and azimuth.
@@ -199,11 +201,6 @@ impl Arc {
             width: ab - aa,
         }
     }
-}
-
-/// The probes' runs: run i from probe `ends[i]` to `ends[i + 1]`.
-fn span_ends() -> [usize; SPANS + 1] {
-    std::array::from_fn(|i| i * probes() / SPANS)
 }
 
 /// (sin, cos) of the glint rule's azimuths.
@@ -235,6 +232,7 @@ impl<'a> EarthLight<'a> {
             {
                 let tan_max = slope * laguerre().last().map_or(0.0, |n| n.0).sqrt();
                 let reach = earth.cos_cap.clamp(-1.0, 1.0).acos() + 2.0 * tan_max.atan();
+                let span_ends: [usize; SPANS + 1] = std::array::from_fn(|i| i * probes() / SPANS);
                 Some(Glint {
                     spec: brdf.split(false),
                     slope,
@@ -247,8 +245,9 @@ impl<'a> EarthLight<'a> {
                         reach.cos()
                     },
                     probe_tilt: (slope * probes() as f64 * PROBE_STEP).atan(),
+                    ends: span_ends,
                     arcs: {
-                        let ends = span_ends();
+                        let ends = span_ends;
                         std::array::from_fn(|i| {
                             let (a, b) = if i < SPANS {
                                 (ends[i], ends[i + 1])
@@ -379,7 +378,7 @@ impl Glint {
         let nodes = laguerre();
         let probes = probes();
         let mut sum = 0.0;
-        let ends = span_ends();
+        let ends = &self.ends;
         for &(sp, cp) in glint_azimuths() {
             let across = t1 * cp + t2 * sp;
             // the integrand at u = √s

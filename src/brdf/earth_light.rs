@@ -129,29 +129,30 @@ impl AllBeams {
     /// (`Some(false)`), with no lobe reaching any of them either way; `None` when the
     /// bounds cannot tell.
     fn over(&self, cone: &Cone) -> Option<bool> {
-        // the normals against the lights: the cone widened by the lights' half-angle,
-        // against their axis
+        // the normals against the lights (and the half vectors): the cone widened by the
+        // lights' (the halves') half-angle, against their axis
         let half = cone.half();
-        let (least, most) = Cone::new(cone.axis, half + self.lights_half).dots(self.lights.axis);
-        if least <= 0.0 {
-            return (most < 0.0).then_some(false);
-        }
-        let clear = self.halves.is_none_or(|h| {
-            let most = Cone::new(cone.axis, half + self.halves_half).max_dot(h.axis);
-            most <= 0.0 || most * most < self.below
-        });
-        clear.then_some(true)
+        self.verdict(
+            Cone::new(cone.axis, half + self.lights_half).dots(self.lights.axis),
+            |h| Cone::new(cone.axis, half + self.halves_half).max_dot(h.axis),
+        )
     }
 
     /// [`AllBeams::over`] for one normal `n`.
     #[inline]
     fn at(&self, n: DVec3) -> Option<bool> {
-        let (least, most) = self.lights.dots(n);
+        self.verdict(self.lights.dots(n), |h| h.max_dot(n))
+    }
+
+    /// The answer of [`AllBeams::over`] and [`AllBeams::at`] from the least and largest
+    /// n·l over the beams and the normals, and `lobe(halves)`: the largest n·h.
+    #[inline]
+    fn verdict(&self, (least, most): (f64, f64), lobe: impl FnOnce(&Cone) -> f64) -> Option<bool> {
         if least <= 0.0 {
             return (most < 0.0).then_some(false);
         }
-        let clear = self.halves.is_none_or(|h| {
-            let most = h.max_dot(n);
+        let clear = self.halves.as_ref().is_none_or(|h| {
+            let most = lobe(h);
             most <= 0.0 || most * most < self.below
         });
         clear.then_some(true)
@@ -172,7 +173,8 @@ struct Glint {
     /// The largest tilt of h from the face's normal that a probe reaches, rad: the
     /// probes' light directions lie within twice it of the mirror direction.
     probe_tilt: f64,
-    /// The probes' runs: run i from probe `ends[i]` to `ends[i + 1]`.
+    /// The probes' runs: run i from probe `ends[i]` to `ends[i + 1]` (`ends[SPANS]`: the
+    /// last probe, [`probes`]).
     ends: [usize; SPANS + 1],
     /// The arcs an azimuth's probes are bounded on: each run of them ([`SPANS`]), then
     /// all of them. They depend on the lobe's slope alone, so they are found once per
@@ -246,17 +248,15 @@ impl<'a> EarthLight<'a> {
                     },
                     probe_tilt: (slope * probes() as f64 * PROBE_STEP).atan(),
                     ends: span_ends,
-                    arcs: {
-                        let ends = span_ends;
-                        std::array::from_fn(|i| {
-                            let (a, b) = if i < SPANS {
-                                (ends[i], ends[i + 1])
-                            } else {
-                                (0, probes())
-                            };
-                            Arc::new(slope, a as f64 * PROBE_STEP, b as f64 * PROBE_STEP)
-                        })
-                    },
+                    arcs: std::array::from_fn(|i| {
+                        // the runs, then all the probes (from ends[0] = 0 to ends[SPANS])
+                        let (a, b) = if i < SPANS {
+                            (span_ends[i], span_ends[i + 1])
+                        } else {
+                            (span_ends[0], span_ends[SPANS])
+                        };
+                        Arc::new(slope, a as f64 * PROBE_STEP, b as f64 * PROBE_STEP)
+                    }),
                 })
             }
             _ => None,
@@ -376,9 +376,9 @@ impl Glint {
         let (t1, t2) = orthonormal_basis(n);
         let step = TAU / GLINT_AZIMUTHS as f64;
         let nodes = laguerre();
-        let probes = probes();
-        let mut sum = 0.0;
         let ends = &self.ends;
+        let probes = ends[SPANS];
+        let mut sum = 0.0;
         for &(sp, cp) in glint_azimuths() {
             let across = t1 * cp + t2 * sp;
             // the integrand at u = √s

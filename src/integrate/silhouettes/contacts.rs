@@ -566,6 +566,18 @@ impl LevelGrid {
     }
 }
 
+/// A triangle of a cell as [`meeting_pairs`] tests it against the cell's others: its
+/// index, face, box (widened, m), and on which axes its box starts in the cell's row
+/// (bit i: axis i).
+#[derive(Clone, Copy)]
+struct Binned {
+    t: u32,
+    face: u32,
+    corner: u8,
+    lo: DVec3,
+    hi: DVec3,
+}
+
 /// Every pair of triangles (lower index first) of different faces, sharing no welded
 /// vertex, that meet, with the segment where they do.
 fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec3))> {
@@ -593,24 +605,55 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
         let (lo, hi) = (s.min(t), s.max(t));
         meeting(mesh, welded, lo, hi, tol).map(|seg| (lo as u32, hi as u32, seg))
     };
-    // both at one level: cell by cell, each pair of its triangles
+    // both at one level: cell by cell, each pair of its triangles, read from a copy of
+    // the cell's triangles gathered once (a cell of k holds k²/2 pairs, and reading each
+    // pair's boxes and faces from the mesh's tables cost more than testing them)
     let within = grid.levels.par_iter().flat_map(|level| {
-        (0..level.keys.len()).into_par_iter().flat_map_iter(|i| {
-            let items = &level.binned[level.start[i] as usize..level.start[i + 1] as usize];
-            let cell = LevelGrid::coords(level.keys[i]);
-            let mut out = Vec::new();
-            // a cell of one face's triangles holds no pair: pairs in one face are not
-            // contacts
-            if level.face.get(i).is_none_or(|&f| f == MIXED) {
-                for (j, &s) in items.iter().enumerate() {
-                    let first_s = grid.first[s as usize];
-                    for &t in &items[j + 1..] {
-                        out.extend(pair(s as usize, t as usize, first_s, cell));
+        (0..level.keys.len())
+            .into_par_iter()
+            .map_init(Vec::new, |local: &mut Vec<Binned>, i| {
+                let mut out = Vec::new();
+                // a cell of one face's triangles holds no pair: pairs in one face are not
+                // contacts
+                if level.face.get(i).is_some_and(|&f| f != MIXED) {
+                    return out;
+                }
+                let items = &level.binned[level.start[i] as usize..level.start[i + 1] as usize];
+                let cell = LevelGrid::coords(level.keys[i]);
+                local.clear();
+                local.extend(items.iter().map(|&t| {
+                    let first = grid.first[t as usize];
+                    let (lo, hi) = boxes[t as usize];
+                    Binned {
+                        t,
+                        face: tri_face[t as usize],
+                        corner: (0..3).fold(0, |m, i| m | u8::from(first[i] == cell[i]) << i),
+                        lo,
+                        hi,
+                    }
+                }));
+                for (j, a) in local.iter().enumerate() {
+                    for b in &local[j + 1..] {
+                        // the cell holds the low corner of the two boxes' overlap when, on
+                        // each axis, one of them starts in its row (neither can start
+                        // beyond it): the pair is tested here and in no other cell
+                        if a.corner | b.corner != 0b111
+                            || a.face == b.face
+                            || !overlap((a.lo, a.hi), (b.lo, b.hi))
+                            || group.is_some_and(|g| g[a.t as usize] != g[b.t as usize])
+                        {
+                            continue;
+                        }
+                        let (lo, hi) = (a.t.min(b.t), a.t.max(b.t));
+                        out.extend(
+                            meeting(mesh, welded, lo as usize, hi as usize, tol)
+                                .map(|seg| (lo, hi, seg)),
+                        );
                     }
                 }
-            }
-            out
-        })
+                out
+            })
+            .flatten_iter()
     });
     // one finer than the other: the finer asks the coarser levels' cells its box
     // touches (a few each)

@@ -12,6 +12,7 @@
 
 use super::polygons::Polygons;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Most polygons in a leaf.
 const LEAF: usize = 4;
@@ -49,6 +50,7 @@ impl Rays {
         let n = polys.len();
         let mut prims: Vec<u32> = (0..n as u32).collect();
         let boxes: Vec<(DVec3, DVec3)> = (0..n)
+            .into_par_iter()
             .map(|k| {
                 polys
                     .corners3(k)
@@ -58,39 +60,63 @@ impl Rays {
                     })
             })
             .collect();
-        let centres: Vec<DVec3> = boxes.iter().map(|b| (b.0 + b.1) * 0.5).collect();
+        let centres: Vec<DVec3> = boxes.par_iter().map(|b| (b.0 + b.1) * 0.5).collect();
+        let build = Build {
+            polys,
+            open,
+            boxes: &boxes,
+            centres: &centres,
+        };
         let mut nodes = Vec::with_capacity(2 * n / LEAF + 1);
         nodes.push(leaf(0, n));
-        // (node, start, end, depth) still to split
-        let mut todo = vec![(0usize, 0usize, n, 0usize)];
-        while let Some((i, s, e, depth)) = todo.pop() {
-            let range = &mut prims[s..e];
-            let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-            let (mut clo, mut chi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-            for &k in range.iter() {
-                let (a, b) = boxes[k as usize];
-                lo = lo.min(a);
-                hi = hi.max(b);
-                clo = clo.min(centres[k as usize]);
-                chi = chi.max(centres[k as usize]);
-            }
-            let (axis, sin_half, any_open) = cone(polys, open, range);
-            nodes[i].lo = lo;
-            nodes[i].hi = hi;
-            nodes[i].axis = axis;
-            nodes[i].sin_half = sin_half;
-            nodes[i].open = any_open;
-            if e - s <= LEAF {
-                continue;
-            }
-            let mid = split(range, &boxes, &centres, clo, chi, depth >= SAH_DEPTH);
-            let left = nodes.len();
-            nodes.push(leaf(s, s + mid));
-            nodes.push(leaf(s + mid, e));
-            nodes[i].start = left as u32;
-            nodes[i].count = 0;
-            todo.push((left, s, s + mid, depth + 1));
-            todo.push((left + 1, s + mid, e, depth + 1));
+        // The top levels on one thread, down to subtrees of at most an eighth of the
+        // polygons; those built side by side, each in its own table, then appended
+        // (a subtree's nodes are its own, so the tree is the same whichever thread built
+        // what).
+        let apart = if n >= 2 * PARALLEL {
+            (n / 8).max(PARALLEL)
+        } else {
+            0
+        };
+        let mut subtrees = Vec::new();
+        build.grow(
+            &mut nodes,
+            &mut prims,
+            0,
+            (0, 0, n, 0),
+            apart,
+            &mut subtrees,
+        );
+        subtrees.sort_unstable_by_key(|&(_, s, _, _)| s);
+        let mut rest = &mut prims[..];
+        let mut at = 0;
+        let mut jobs = Vec::with_capacity(subtrees.len());
+        for &(i, s, e, depth) in &subtrees {
+            let (_, tail) = std::mem::take(&mut rest).split_at_mut(s - at);
+            let (mine, tail) = tail.split_at_mut(e - s);
+            (rest, at) = (tail, e);
+            jobs.push((i, s, e, depth, mine));
+        }
+        let built: Vec<(usize, Vec<Node>)> = jobs
+            .into_par_iter()
+            .map(|(i, s, e, depth, mine)| {
+                let mut local = vec![leaf(s, e)];
+                build.grow(&mut local, mine, s, (0, s, e, depth), 0, &mut Vec::new());
+                (i, local)
+            })
+            .collect();
+        for (i, local) in built {
+            // the subtree's root in the place left for it, its other nodes appended: a
+            // child at local index c (never 0, the root's) lands at `base + c - 1`
+            let base = nodes.len();
+            let moved = |mut node: Node| {
+                if node.count == 0 {
+                    node.start = (base + node.start as usize - 1) as u32;
+                }
+                node
+            };
+            nodes[i] = moved(local[0]);
+            nodes.extend(local[1..].iter().map(|&node| moved(node)));
         }
         Rays { nodes, prims }
     }
@@ -247,6 +273,76 @@ fn classify(c: &[glam::DVec2], q: glam::DVec2, amb: f64) -> Hit {
 /// Bins along the centres' longest extent for the split's cost.
 const BINS: usize = 16;
 /// Depth from which nodes are split at the median (keeps the tree's depth bounded).
+/// What building the hierarchy reads: the polygons, which faces are open, and each
+/// polygon's box (m) and its centre.
+struct Build<'a> {
+    polys: &'a Polygons,
+    open: &'a [bool],
+    boxes: &'a [(DVec3, DVec3)],
+    centres: &'a [DVec3],
+}
+
+impl Build<'_> {
+    /// Grows the subtree of `nodes[i]` over polygons `s..e` (`todo`: (i, s, e, depth)),
+    /// `prims` holding `prims[at..]` of the whole table: each node bounded and split
+    /// until its leaves hold at most [`LEAF`] polygons, except that a node of at most
+    /// `apart` polygons (and more than a leaf's) is left as it is and listed in `later`.
+    fn grow(
+        &self,
+        nodes: &mut Vec<Node>,
+        prims: &mut [u32],
+        at: usize,
+        todo: (usize, usize, usize, usize),
+        apart: usize,
+        later: &mut Vec<(usize, usize, usize, usize)>,
+    ) {
+        let mut todo = vec![todo];
+        while let Some((i, s, e, depth)) = todo.pop() {
+            if e - s > LEAF && e - s <= apart {
+                later.push((i, s, e, depth));
+                continue;
+            }
+            let range = &mut prims[s - at..e - at];
+            let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+            let (mut clo, mut chi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+            for &k in range.iter() {
+                let (a, b) = self.boxes[k as usize];
+                lo = lo.min(a);
+                hi = hi.max(b);
+                clo = clo.min(self.centres[k as usize]);
+                chi = chi.max(self.centres[k as usize]);
+            }
+            let (axis, sin_half, any_open) = cone(self.polys, self.open, range);
+            nodes[i].lo = lo;
+            nodes[i].hi = hi;
+            nodes[i].axis = axis;
+            nodes[i].sin_half = sin_half;
+            nodes[i].open = any_open;
+            if e - s <= LEAF {
+                continue;
+            }
+            let mid = split(
+                range,
+                self.boxes,
+                self.centres,
+                clo,
+                chi,
+                depth >= SAH_DEPTH,
+            );
+            let left = nodes.len();
+            nodes.push(leaf(s, s + mid));
+            nodes.push(leaf(s + mid, e));
+            nodes[i].start = left as u32;
+            nodes[i].count = 0;
+            todo.push((left, s, s + mid, depth + 1));
+            todo.push((left + 1, s + mid, e, depth + 1));
+        }
+    }
+}
+
+/// Fewest polygons in a subtree built apart from the rest (on another thread).
+const PARALLEL: usize = 4096;
+
 const SAH_DEPTH: usize = 40;
 
 /// Orders `range` (polygons with `boxes` and `centres`, the centres within `clo`–`chi`)

@@ -72,19 +72,39 @@ impl Contact {
 /// the cap along a line from that corner); two that share an edge never (neighbours
 /// along it: the topology's).
 fn meeting(mesh: &Mesh, welded: &[u32], s: usize, t: usize, tol: f64) -> Option<(DVec3, DVec3)> {
-    let (ts, tt) = (mesh.triangles[s], mesh.triangles[t]);
-    let mut shared = ts
-        .iter()
-        .filter(|&&a| tt.iter().any(|&b| welded[a as usize] == welded[b as usize]));
+    meeting_of(&Tri::of(mesh, welded, s), &Tri::of(mesh, welded, t), tol)
+}
+
+/// A triangle as [`meeting_of`] reads it: its corners (m) and their welded ids.
+#[derive(Clone, Copy)]
+struct Tri {
+    c: [DVec3; 3],
+    w: [u32; 3],
+}
+
+impl Tri {
+    #[inline]
+    fn of(mesh: &Mesh, welded: &[u32], t: usize) -> Tri {
+        Tri {
+            c: mesh.corners(t),
+            w: mesh.triangles[t].map(|v| welded[v as usize]),
+        }
+    }
+}
+
+/// [`meeting`] of two triangles read already.
+#[inline]
+fn meeting_of(s: &Tri, t: &Tri, tol: f64) -> Option<(DVec3, DVec3)> {
+    let mut shared = (0..3).filter(|&i| t.w.contains(&s.w[i]));
     let (first, second) = (shared.next(), shared.next());
     if second.is_some() {
         return None;
     }
-    let (cs, ct) = (mesh.corners(s), mesh.corners(t));
+    let (cs, ct) = (&s.c, &t.c);
     match first {
-        None => meet(&cs, &ct, tol),
-        Some(&a) => {
-            let at = mesh.vertices[a as usize];
+        None => meet(cs, ct, tol),
+        Some(i) => {
+            let at = cs[i];
             // one's other two corners on one side of the other's plane: they touch at the
             // corner only (most pairs around a corner of a smooth surface)
             let apart = |x: &[DVec3; 3], y: &[DVec3; 3]| {
@@ -95,14 +115,14 @@ fn meeting(mesh: &Mesh, welded: &[u32], s: usize, t: usize, tol: f64) -> Option<
                 let (h0, h1) = (sides.next().unwrap_or(0.0), sides.next().unwrap_or(0.0));
                 h0 * h1 > 0.0 && h0 * h0 > reach && h1 * h1 > reach
             };
-            if apart(&cs, &ct) || apart(&ct, &cs) {
+            if apart(cs, ct) || apart(ct, cs) {
                 return None;
             }
-            let (p, q) = meet(&cs, &ct, tol)?;
+            let (p, q) = meet(cs, ct, tol)?;
             // beyond the corner by more than rounding: a thousandth of the pair's size
             let size = cs
                 .iter()
-                .chain(&ct)
+                .chain(ct)
                 .map(|&x| (x - at).length())
                 .fold(0.0f64, f64::max);
             let far = (p - at).length().max((q - at).length());
@@ -567,8 +587,8 @@ impl LevelGrid {
 }
 
 /// A triangle of a cell as [`meeting_pairs`] tests it against the cell's others: its
-/// index, face, box (widened, m), and on which axes its box starts in the cell's row
-/// (bit i: axis i).
+/// index, face, box (widened, m), on which axes its box starts in the cell's row (bit i:
+/// axis i), and its corners.
 #[derive(Clone, Copy)]
 struct Binned {
     t: u32,
@@ -576,6 +596,7 @@ struct Binned {
     corner: u8,
     lo: DVec3,
     hi: DVec3,
+    tri: Tri,
 }
 
 /// Every pair of triangles (lower index first) of different faces, sharing no welded
@@ -630,6 +651,7 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
                         corner: (0..3).fold(0, |m, i| m | u8::from(first[i] == cell[i]) << i),
                         lo,
                         hi,
+                        tri: Tri::of(mesh, welded, t as usize),
                     }
                 }));
                 for (j, a) in local.iter().enumerate() {
@@ -644,11 +666,9 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
                         {
                             continue;
                         }
-                        let (lo, hi) = (a.t.min(b.t), a.t.max(b.t));
-                        out.extend(
-                            meeting(mesh, welded, lo as usize, hi as usize, tol)
-                                .map(|seg| (lo, hi, seg)),
-                        );
+                        // the lower index first, as `meeting` is asked
+                        let (lo, hi) = if a.t < b.t { (a, b) } else { (b, a) };
+                        out.extend(meeting_of(&lo.tri, &hi.tri, tol).map(|seg| (lo.t, hi.t, seg)));
                     }
                 }
                 out

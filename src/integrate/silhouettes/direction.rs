@@ -73,7 +73,7 @@ pub struct Direction {
     pub(super) stamp: Vec<u32>,
     pub(super) query: u32,
     /// The folds above the patch being decided, with their boxes across d and tops;
-    /// its receivers' footprints, and their corners across d.
+    /// its receivers' footprints; the corners across d of the face being tested.
     pub(super) near: Vec<Near>,
     pub(super) footprint: Vec<Footprint>,
     pub(super) corners: Vec<DVec2>,
@@ -105,12 +105,11 @@ fn line_meets_box(f: &Fold, lo: DVec2, hi: DVec2) -> bool {
     c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0)
 }
 
-/// A receiving face across d: its box (m, widened by the tolerance), its lowest point
-/// along d (m, raised by the rounding height), its range of corners.
+/// A receiving face across d, bounded by its sphere: its box (m, widened by the
+/// tolerance) and its lowest point along d (m, raised by the rounding height).
 #[derive(Clone, Copy)]
 pub(super) struct Footprint {
     face: u32,
-    corners: (u32, u32),
     lo: DVec2,
     hi: DVec2,
     bottom: f64,
@@ -222,9 +221,10 @@ impl Silhouettes<'_> {
         });
     }
 
-    /// Fills `dir.footprint` with the receivers among `faces` (a dirty patch's), with
-    /// their corners across d: their boxes there and their bottoms along d. Returns the
-    /// patch's own footprint (widened by the tolerance), tighter than its box's.
+    /// Fills `dir.footprint` with the receivers among `faces` (a dirty patch's), each
+    /// bounded across d by the box of its sphere (most faces no fold comes near: their
+    /// corners are projected only when one does, [`Silhouettes::face_lines`]). Returns
+    /// the patch's footprint (widened by the tolerance).
     fn footprints(
         &self,
         dir: &mut Direction,
@@ -243,26 +243,16 @@ impl Silhouettes<'_> {
                 dir.face[f] = FaceState::NotReceiver;
                 continue;
             }
-            let first = dir.corners.len() as u32;
-            let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-            let mut bottom = f64::INFINITY;
-            for k in self.polys.of(f) {
-                for &q in self.polys.corners3(k) {
-                    let a = DVec2::new(q.dot(u), q.dot(w));
-                    dir.corners.push(a);
-                    lo = lo.min(a);
-                    hi = hi.max(a);
-                    bottom = bottom.min(q.dot(d));
-                }
-            }
+            let (c, r) = (self.polys.centre[f], self.polys.radius[f]);
+            let at = DVec2::new(c.dot(u), c.dot(w));
+            let (lo, hi) = (at - DVec2::splat(r), at + DVec2::splat(r));
             plo = plo.min(lo);
             phi = phi.max(hi);
             dir.footprint.push(Footprint {
                 face: f as u32,
-                corners: (first, dir.corners.len() as u32),
                 lo: lo - DVec2::splat(self.tol),
                 hi: hi + DVec2::splat(self.tol),
-                bottom: bottom + self.eps,
+                bottom: c.dot(d) - r + self.eps,
             });
         }
         (plo - DVec2::splat(self.tol), phi + DVec2::splat(self.tol))
@@ -310,20 +300,52 @@ impl Silhouettes<'_> {
     }
 
     /// Appends to `dir.lines` the lines of the folds near its patch (`dir.near`) that
-    /// cross the face of footprint `fp`.
+    /// cross the face of footprint `fp`: its corners are projected across d once a fold
+    /// reaches its sphere's box, and bound it from then on.
     fn face_lines(&self, dir: &mut Direction, fp: &Footprint) {
         let across = dir.across;
+        let Across { d, u, w, .. } = across;
         let f = fp.face as usize;
-        let corners = &dir.corners[fp.corners.0 as usize..fp.corners.1 as usize];
-        let one = (self.polys.of(f).len() == 1).then_some(corners);
-        let receiver = lines::Receiver::new(&self.polys, f, across.d, one);
-        for near in &dir.near {
-            if near.top <= fp.bottom || near.lo.cmpgt(fp.hi).any() || near.hi.cmplt(fp.lo).any() {
+        let Direction {
+            near,
+            folds,
+            corners,
+            lines,
+            ..
+        } = dir;
+        let misses = |n: &Near, lo: DVec2, hi: DVec2, bottom: f64| {
+            n.top <= bottom || n.lo.cmpgt(hi).any() || n.hi.cmplt(lo).any()
+        };
+        let Some(first) = near
+            .iter()
+            .position(|n| !misses(n, fp.lo, fp.hi, fp.bottom))
+        else {
+            return;
+        };
+        corners.clear();
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        let mut bottom = f64::INFINITY;
+        for k in self.polys.of(f) {
+            for &q in self.polys.corners3(k) {
+                let a = DVec2::new(q.dot(u), q.dot(w));
+                corners.push(a);
+                lo = lo.min(a);
+                hi = hi.max(a);
+                bottom = bottom.min(q.dot(d));
+            }
+        }
+        let (lo, hi) = (lo - DVec2::splat(self.tol), hi + DVec2::splat(self.tol));
+        let bottom = bottom + self.eps;
+        let one = (self.polys.of(f).len() == 1).then_some(&corners[..]);
+        let receiver = lines::Receiver::new(&self.polys, f, d, one);
+        for n in &near[first..] {
+            if misses(n, lo, hi, bottom) {
                 continue;
             }
-            let fold = &dir.folds[near.fold as usize];
-            if let Some(line) = lines::crossing(&self.polys, &receiver, fold, &across) {
-                dir.lines.push(line);
+            if let Some(line) =
+                lines::crossing(&self.polys, &receiver, &folds[n.fold as usize], &across)
+            {
+                lines.push(line);
             }
         }
     }

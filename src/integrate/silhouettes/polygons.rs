@@ -21,7 +21,8 @@ pub struct Polygons {
     pub two_sided: Vec<bool>,
     pub convex: Vec<bool>,
     pub inside: Vec<DVec3>,
-    /// Per face: the radius (m) of a sphere about its centroid holding it.
+    /// Per face: its centroid and the radius of a sphere about it holding the face (m).
+    pub centre: Vec<DVec3>,
     pub radius: Vec<f64>,
     /// Per face: its range of polygons.
     pub of_face: Vec<(u32, u32)>,
@@ -43,6 +44,7 @@ impl Polygons {
             two_sided,
             convex: Vec::with_capacity(nf),
             inside: Vec::with_capacity(nf),
+            centre: Vec::with_capacity(nf),
             radius: Vec::with_capacity(nf),
             of_face: Vec::with_capacity(nf),
             face: Vec::new(),
@@ -62,6 +64,7 @@ impl Polygons {
             p.point.push(o);
             p.basis.push((u, w));
             p.inside.push((a + b + c) / 3.0);
+            p.centre.push(f.centroid);
             p.radius.push(f.radius);
             pts.clear();
             ids.clear();
@@ -128,6 +131,7 @@ impl Polygons {
             let (u, w) = p.basis[f];
             p.basis[f] = (m.rot * u, m.rot * w);
             p.inside[f] = m.apply(p.inside[f]);
+            p.centre[f] = m.apply(p.centre[f]);
             let (a, b) = self.of_face[f];
             let (s, e) = (self.spans[a as usize].0, self.spans[b as usize - 1].1);
             for q in &mut p.corners[s as usize..e as usize] {

@@ -15,10 +15,19 @@ use crate::geometry::csr::{csr_of, sort_within};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
-/// Most faces a patch holds.
+/// Most faces a patch holds wherever the surface turns (up to [`MAX_TURN_COS`]).
 const MAX_FACES: usize = 16;
 /// Largest angle between a face's normal and its patch's first face's normal (cos).
 const MAX_TURN_COS: f64 = 0.94;
+/// Most faces a patch holds where the surface stays nearly flat: past [`MAX_FACES`] a
+/// patch takes only faces within [`FLAT_TURN_COS`] of its first face's normal. A finely
+/// meshed smooth surface (a dish, a cylinder, at ~200k triangles) then has a quarter as
+/// many patches to ask about per direction, while a crumpled one keeps small patches:
+/// 64 faces everywhere cost the crumpled fragment and the rocket body at 20k triangles
+/// 2–3 %, 16 everywhere the fine dishes 6–8 % (docs/performance.md, eleventh sitting).
+const MAX_FLAT_FACES: usize = 64;
+/// Largest turn (cos, about 5.7°) of a face joining a patch past [`MAX_FACES`].
+const FLAT_TURN_COS: f64 = 0.995;
 
 /// How a patch faces along a direction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -203,13 +212,16 @@ fn grow_over<I: Iterator<Item = u32>>(
         'grow: while let Some(f) = queue.pop_front() {
             for g in neighbours(f as usize) {
                 let gi = g as usize;
-                if of_face[gi] != NONE
-                    || two_sided(gi) != sided
-                    || normal(gi).dot(n0) < MAX_TURN_COS
-                {
+                let size = faces.len() - start;
+                let turn = if size < MAX_FACES {
+                    MAX_TURN_COS
+                } else {
+                    FLAT_TURN_COS
+                };
+                if of_face[gi] != NONE || two_sided(gi) != sided || normal(gi).dot(n0) < turn {
                     continue;
                 }
-                if faces.len() - start >= MAX_FACES {
+                if size >= MAX_FLAT_FACES {
                     break 'grow;
                 }
                 of_face[gi] = p;
@@ -489,7 +501,13 @@ mod tests {
         // each face once, in the patch of_face names
         let mut seen = vec![0u32; nf];
         for k in 0..p.len() {
-            assert!(!p.faces_of(k).is_empty() && p.faces_of(k).len() <= MAX_FACES);
+            let m = p.faces_of(k);
+            assert!(!m.is_empty() && m.len() <= MAX_FLAT_FACES);
+            // past MAX_FACES, only faces within the flat turn of the first
+            let n0 = b.polys.normal[m[0] as usize];
+            for &f in m.iter().skip(MAX_FACES) {
+                assert!(b.polys.normal[f as usize].dot(n0) >= FLAT_TURN_COS);
+            }
             for &f in p.faces_of(k) {
                 seen[f as usize] += 1;
                 assert_eq!(p.of_face[f as usize] as usize, k);
@@ -540,6 +558,24 @@ mod tests {
         }
         // the mixed ones are the few along the terminator
         assert!(mixed * 5 < along + away, "{along} {away} {mixed}");
+    }
+
+    #[test]
+    fn patches_grow_past_sixteen_faces_only_where_the_surface_stays_flat() {
+        // a sphere meshed finely enough that 64 faces turn less than the flat limit
+        // about their first: its patches hold more than 32 faces on average; a coarse
+        // one, where the faces beside a patch's first already turn about as much as the
+        // limit, about 16 or fewer
+        let mean = |freq: u32| {
+            let b = fixtures::build(&geodesic_sphere(freq, 1.0));
+            b.polys.faces() as f64 / b.patches.len() as f64
+        };
+        let (fine, coarse) = (mean(64), mean(12));
+        assert!(fine > 32.0, "{fine} faces a patch on the fine sphere");
+        assert!(
+            coarse <= MAX_FACES as f64,
+            "{coarse} faces a patch on the coarse sphere"
+        );
     }
 
     #[test]

@@ -79,30 +79,31 @@ impl Rays {
             0
         };
         let mut subtrees = Vec::new();
-        build.grow(
-            &mut nodes,
-            &mut prims,
-            0,
-            (0, 0, n, 0),
-            apart,
-            &mut subtrees,
-        );
-        subtrees.sort_unstable_by_key(|&(_, s, _, _)| s);
+        let root = Pending {
+            node: 0,
+            start: 0,
+            end: n,
+            depth: 0,
+        };
+        build.grow(&mut nodes, &mut prims, 0, root, apart, &mut subtrees);
+        // each subtree's polygons, a range of `prims` of its own
+        subtrees.sort_unstable_by_key(|p| p.start);
         let mut rest = &mut prims[..];
         let mut at = 0;
         let mut jobs = Vec::with_capacity(subtrees.len());
-        for &(i, s, e, depth) in &subtrees {
-            let (_, tail) = std::mem::take(&mut rest).split_at_mut(s - at);
-            let (mine, tail) = tail.split_at_mut(e - s);
-            (rest, at) = (tail, e);
-            jobs.push((i, s, e, depth, mine));
+        for p in &subtrees {
+            let (_, tail) = std::mem::take(&mut rest).split_at_mut(p.start - at);
+            let (mine, tail) = tail.split_at_mut(p.end - p.start);
+            (rest, at) = (tail, p.end);
+            jobs.push((*p, mine));
         }
         let built: Vec<(usize, Vec<Node>)> = jobs
             .into_par_iter()
-            .map(|(i, s, e, depth, mine)| {
-                let mut local = vec![leaf(s, e)];
-                build.grow(&mut local, mine, s, (0, s, e, depth), 0, &mut Vec::new());
-                (i, local)
+            .map(|(p, mine)| {
+                let mut local = vec![leaf(p.start, p.end)];
+                let root = Pending { node: 0, ..p };
+                build.grow(&mut local, mine, p.start, root, 0, &mut Vec::new());
+                (p.node, local)
             })
             .collect();
         for (i, local) in built {
@@ -272,7 +273,6 @@ fn classify(c: &[glam::DVec2], q: glam::DVec2, amb: f64) -> Hit {
 
 /// Bins along the centres' longest extent for the split's cost.
 const BINS: usize = 16;
-/// Depth from which nodes are split at the median (keeps the tree's depth bounded).
 /// What building the hierarchy reads: the polygons, which faces are open, and each
 /// polygon's box (m) and its centre.
 struct Build<'a> {
@@ -282,24 +282,40 @@ struct Build<'a> {
     centres: &'a [DVec3],
 }
 
+/// A node still to bound and split: its index in its table, its polygons' range of the
+/// whole `prims` table, its depth.
+#[derive(Clone, Copy)]
+struct Pending {
+    node: usize,
+    start: usize,
+    end: usize,
+    depth: usize,
+}
+
 impl Build<'_> {
-    /// Grows the subtree of `nodes[i]` over polygons `s..e` (`todo`: (i, s, e, depth)),
-    /// `prims` holding `prims[at..]` of the whole table: each node bounded and split
-    /// until its leaves hold at most [`LEAF`] polygons, except that a node of at most
-    /// `apart` polygons (and more than a leaf's) is left as it is and listed in `later`.
+    /// Grows the subtree of node `root` (`prims` holding `prims[at..]` of the whole
+    /// table): each node bounded and split until its leaves hold at most [`LEAF`]
+    /// polygons, except that a node of at most `apart` polygons (and more than a leaf's)
+    /// is left as it is and listed in `later`.
     fn grow(
         &self,
         nodes: &mut Vec<Node>,
         prims: &mut [u32],
         at: usize,
-        todo: (usize, usize, usize, usize),
+        root: Pending,
         apart: usize,
-        later: &mut Vec<(usize, usize, usize, usize)>,
+        later: &mut Vec<Pending>,
     ) {
-        let mut todo = vec![todo];
-        while let Some((i, s, e, depth)) = todo.pop() {
+        let mut todo = vec![root];
+        while let Some(pending) = todo.pop() {
+            let Pending {
+                node: i,
+                start: s,
+                end: e,
+                depth,
+            } = pending;
             if e - s > LEAF && e - s <= apart {
-                later.push((i, s, e, depth));
+                later.push(pending);
                 continue;
             }
             let range = &mut prims[s - at..e - at];
@@ -334,8 +350,14 @@ impl Build<'_> {
             nodes.push(leaf(s + mid, e));
             nodes[i].start = left as u32;
             nodes[i].count = 0;
-            todo.push((left, s, s + mid, depth + 1));
-            todo.push((left + 1, s + mid, e, depth + 1));
+            for (node, start, end) in [(left, s, s + mid), (left + 1, s + mid, e)] {
+                todo.push(Pending {
+                    node,
+                    start,
+                    end,
+                    depth: depth + 1,
+                });
+            }
         }
     }
 }
@@ -343,6 +365,7 @@ impl Build<'_> {
 /// Fewest polygons in a subtree built apart from the rest (on another thread).
 const PARALLEL: usize = 4096;
 
+/// Depth from which nodes are split at the median (keeps the tree's depth bounded).
 const SAH_DEPTH: usize = 40;
 
 /// Orders `range` (polygons with `boxes` and `centres`, the centres within `clo`–`chi`)

@@ -56,6 +56,7 @@ mod contacts;
 mod counts;
 mod direction;
 mod folds;
+mod level_grid;
 mod lines;
 mod patches;
 mod polygons;

@@ -321,6 +321,24 @@ struct Binned {
     tri: Tri,
 }
 
+/// On which axes a box whose low corner lies in cell `first` starts in the row of
+/// `cell` (bit i: axis i; `cell` is one the box touches, so never before `first`).
+#[inline]
+fn starts_in(first: [u32; 3], cell: [u32; 3]) -> u8 {
+    (0..3).fold(0, |m, i| m | u8::from(first[i] == cell[i]) << i)
+}
+
+/// Is a pair of overlapping boxes, starting in `cell`'s rows on the axes `a` and `b`
+/// ([`starts_in`]), tested in that cell? Two overlapping boxes share the cell (at the
+/// coarser one's level) that holds the low corner of their overlap, whose coordinates
+/// are the larger of their own low corners': on each axis one of them starts in its
+/// row. The pair is tested there only, so none is tested twice and no list of
+/// candidates needs sorting.
+#[inline]
+fn owns(a: u8, b: u8) -> bool {
+    a | b == 0b111
+}
+
 /// Every pair of triangles (lower index first) of different faces, sharing no welded
 /// vertex, that meet, with the segment where they do.
 fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec3))> {
@@ -332,16 +350,14 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
         boxes,
         tol,
     } = *found;
-    // Two overlapping boxes share the cell (at the coarser one's level) that holds the
-    // low corner of their overlap, whose coordinates are the larger of their own low
-    // corners' (`first_s`: s's at that level): the pair is tested in that cell only, so
-    // none is tested twice and no list of candidates needs sorting.
+    // a finer triangle s against a coarser one t (`first_s`: the cell of s's box's low
+    // corner at t's level)
     let pair = |s: usize, t: usize, first_s: [u32; 3], cell: [u32; 3]| {
         let (bs, bt, first_t) = (boxes[s], boxes[t], grid.first[t]);
         if tri_face[s] == tri_face[t]
             || group.is_some_and(|g| g[s] != g[t])
             || !overlap(bs, bt)
-            || (0..3).any(|i| first_s[i].max(first_t[i]) != cell[i])
+            || !owns(starts_in(first_s, cell), starts_in(first_t, cell))
         {
             return None;
         }
@@ -370,7 +386,7 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
                     Binned {
                         t,
                         face: tri_face[t as usize],
-                        corner: (0..3).fold(0, |m, i| m | u8::from(first[i] == cell[i]) << i),
+                        corner: starts_in(first, cell),
                         lo,
                         hi,
                         tri: Tri::of(mesh, welded, t as usize),
@@ -378,10 +394,7 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
                 }));
                 for (j, a) in local.iter().enumerate() {
                     for b in &local[j + 1..] {
-                        // the cell holds the low corner of the two boxes' overlap when, on
-                        // each axis, one of them starts in its row (neither can start
-                        // beyond it): the pair is tested here and in no other cell
-                        if a.corner | b.corner != 0b111
+                        if !owns(a.corner, b.corner)
                             || a.face == b.face
                             || !overlap((a.lo, a.hi), (b.lo, b.hi))
                             || group.is_some_and(|g| g[a.t as usize] != g[b.t as usize])

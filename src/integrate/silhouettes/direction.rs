@@ -234,7 +234,6 @@ impl Silhouettes<'_> {
     ) -> (DVec2, DVec2) {
         let Across { d, u, w, .. } = dir.across;
         dir.footprint.clear();
-        dir.corners.clear();
         let (mut plo, mut phi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
         for &f in faces {
             let f = f as usize;

@@ -155,6 +155,15 @@ impl Silhouettes<'_> {
         let whole = facing == Facing::Along
             || (facing == Facing::Away && self.polys.two_sided[faces[0] as usize]);
         self.folds_above(dir, p);
+        if whole && !dir.near.is_empty() {
+            // of the folds over the patch's box, those that may shade its slab
+            let slab = &self.patches.slab[p];
+            let (folds, d, tol) = (&dir.folds, dir.across.d, self.tol);
+            dir.near.retain(|n| {
+                let f = &folds[n.fold as usize];
+                slab.may_shade(f.a, f.b, d, tol).unwrap_or(true)
+            });
+        }
         if whole && dir.near.is_empty() && !self.patches.contacts[p] {
             dir.patch[p] = PatchState::Clean;
             return;

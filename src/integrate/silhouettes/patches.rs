@@ -45,6 +45,36 @@ pub enum Facing {
     Mixed,
 }
 
+/// An edge of a patch (between two of its faces, or on its rim) with what the search
+/// for folds asks of it before reading the edge itself: its faces, so that which way they
+/// face along a direction is read from their normals (at ~200k triangles the edges'
+/// table is larger than the cache, and most edges looked at are not folds).
+#[derive(Debug, Clone, Copy)]
+pub struct PatchEdge {
+    pub edge: u32,
+    /// Its faces; `f1` is [`NONE`] on a border.
+    pub f0: u32,
+    pub f1: u32,
+    /// The patch across it: its own for an edge inside it, [`NONE`] on a border.
+    pub other: u32,
+    /// Facing alone does not say that the surface does not fold here: its triangles
+    /// wind the same way ([`super::topology::Edge::flipped`]), or one face's sheet is
+    /// open and the other's closed.
+    pub always: bool,
+}
+
+/// An edge between two faces of one patch: its index, its faces' places in the patch's
+/// list of faces (a patch holds at most [`MAX_FLAT_FACES`]), and whether facing alone
+/// does not say that the surface does not fold here ([`PatchEdge::always`]). Along a
+/// direction the search for folds finds which way each face of a patch that faces both
+/// ways faces once, then reads its inner edges' faces from that.
+#[derive(Debug, Clone, Copy)]
+pub struct InnerEdge {
+    pub edge: u32,
+    pub at: (u8, u8),
+    pub always: bool,
+}
+
 /// A neighbouring patch and the edges into it (a range of [`Patches::exits`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Link {
@@ -77,12 +107,14 @@ pub struct Patches {
     pub open: Vec<bool>,
     /// Per patch: the edges between two of its own faces (CSR).
     pub inner_at: Vec<u32>,
-    pub inner: Vec<u32>,
+    pub inner: Vec<InnerEdge>,
     /// Per patch: the edges on its rim, each listed once over the whole mesh (in the
     /// patch of the edge's first face), with the other side's patch ([`NONE`] on a
     /// border) (CSR).
     pub rim_at: Vec<u32>,
-    pub rim: Vec<(u32, u32)>,
+    pub rim: Vec<PatchEdge>,
+    /// Per patch: an edge of its rim is a border of the mesh.
+    pub border: Vec<bool>,
     /// Per patch: its neighbouring patches, each with the ways into it across an edge:
     /// (edge, face inside, face outside), a range of `exits` (CSR).
     pub links_at: Vec<u32>,
@@ -96,7 +128,7 @@ impl Patches {
         let np = faces_at.len() - 1;
         let shapes = Shapes::of(polys, topo, &faces_at, &faces);
         let ((inner_at, inner), (rim_at, rim), (links_at, links, exits)) =
-            edges_by_patch(topo, &of_face, np);
+            edges_by_patch(topo, &of_face, (&faces_at, &faces));
         Patches {
             of_face,
             faces_at,
@@ -110,6 +142,13 @@ impl Patches {
             open: shapes.open,
             inner_at,
             inner,
+            border: (0..np)
+                .map(|p| {
+                    rim[rim_at[p] as usize..rim_at[p + 1] as usize]
+                        .iter()
+                        .any(|e| e.other == NONE)
+                })
+                .collect(),
             rim_at,
             rim,
             links_at,
@@ -148,12 +187,12 @@ impl Patches {
     }
 
     #[inline]
-    pub fn inner_of(&self, p: usize) -> &[u32] {
+    pub fn inner_of(&self, p: usize) -> &[InnerEdge] {
         &self.inner[self.inner_at[p] as usize..self.inner_at[p + 1] as usize]
     }
 
     #[inline]
-    pub fn rim_of(&self, p: usize) -> &[(u32, u32)] {
+    pub fn rim_of(&self, p: usize) -> &[PatchEdge] {
         &self.rim[self.rim_at[p] as usize..self.rim_at[p + 1] as usize]
     }
 
@@ -480,12 +519,22 @@ type Csr<T> = (Vec<u32>, Vec<T>);
 fn edges_by_patch(
     topo: &Topology,
     of_face: &[u32],
-    np: usize,
+    (faces_at, faces): (&[u32], &[u32]),
 ) -> (
-    Csr<u32>,
-    Csr<(u32, u32)>,
+    Csr<InnerEdge>,
+    Csr<PatchEdge>,
     (Vec<u32>, Vec<Link>, Vec<(u32, u32, u32)>),
 ) {
+    let np = faces_at.len() - 1;
+    // each face's place in its patch's list
+    let mut place = vec![0u8; of_face.len()];
+    for p in 0..np {
+        let faces = &faces[faces_at[p] as usize..faces_at[p + 1] as usize];
+        debug_assert!(faces.len() <= MAX_FLAT_FACES && MAX_FLAT_FACES <= 256);
+        for (i, &f) in faces.iter().enumerate() {
+            place[f as usize] = i as u8;
+        }
+    }
     let mut inner_items = Vec::new();
     let mut rim_items = Vec::new();
     let mut exit_items = Vec::new();
@@ -496,10 +545,25 @@ fn edges_by_patch(
         } else {
             of_face[e.f1 as usize]
         };
+        let item = PatchEdge {
+            edge: i as u32,
+            f0: e.f0,
+            f1: e.f1,
+            other: p1,
+            always: e.flipped
+                || (e.f1 != NONE && topo.open[e.f0 as usize] != topo.open[e.f1 as usize]),
+        };
         if p0 == p1 {
-            inner_items.push((p0, i as u32));
+            inner_items.push((
+                p0,
+                InnerEdge {
+                    edge: item.edge,
+                    at: (place[e.f0 as usize], place[e.f1 as usize]),
+                    always: item.always,
+                },
+            ));
         } else {
-            rim_items.push((p0, (i as u32, p1)));
+            rim_items.push((p0, item));
         }
         if e.f1 != NONE && p0 != p1 {
             exit_items.push((p0, (i as u32, e.f0, e.f1)));

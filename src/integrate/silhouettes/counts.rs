@@ -196,11 +196,12 @@ impl Silhouettes<'_> {
             }
             _ => return None,
         };
-        let edge = &self.topo.edges[e as usize];
         let across = &dir.across;
         // the search for folds tested every edge that can be one, but for an edge whose
         // triangles wind the same way along it inside a patch that faces one way
-        let fold = if edge.flipped {
+        let flipped = self.topo.any_flipped && self.topo.edges[e as usize].flipped;
+        let fold = if flipped {
+            let edge = &self.topo.edges[e as usize];
             !super::folds::same_way(&self.topo, &self.polys.normal, edge, across.d)
                 && edge.jump(across.u, across.w, |f| self.blocks(f as usize, across.d)) != 0
         } else {
@@ -219,6 +220,7 @@ impl Silhouettes<'_> {
             return Some(target);
         }
         // a point of the edge clear of the lines on both sides
+        let edge = &self.topo.edges[e as usize];
         let (a, b) = (edge.a, edge.b);
         let at = [0.5, 0.3, 0.7, 0.15, 0.85]
             .into_iter()

@@ -92,6 +92,10 @@ pub struct Topology {
     /// `adjacent`).
     pub contacts_at: Vec<u32>,
     pub contacts: Vec<Contact>,
+    /// Some edge is [`Edge::flipped`]: a well-wound mesh has none, and the flood then
+    /// need not read an edge to know that it does not fold (at ~200k triangles the
+    /// edges' table is larger than the cache).
+    pub any_flipped: bool,
 }
 
 impl Topology {
@@ -142,6 +146,7 @@ impl Topology {
         let (adjacent_at, adjacent) = adjacency(&edges, faces.len());
         let (contacts_at, contacts) = csr_of(faces.len(), contacts.iter().copied());
         Topology {
+            any_flipped: edges.iter().any(|e| e.flipped),
             edges,
             adjacent_at,
             adjacent,
@@ -193,6 +198,7 @@ impl Topology {
             open: self.open.clone(),
             contacts_at,
             contacts,
+            any_flipped: self.any_flipped,
         }
     }
 

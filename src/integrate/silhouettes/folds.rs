@@ -7,7 +7,7 @@
 //! between patches that face differently can be one: the search visits those, not every
 //! edge ([`super::patches`]).
 
-use super::patches::{Facing, PatchEdge, Patches};
+use super::patches::{Facing, Patches, RimEdge};
 use super::topology::{Edge, Topology, NONE};
 use glam::{DVec2, DVec3};
 
@@ -69,7 +69,7 @@ pub fn find(
         }
     };
     // as `same_way`, from the patch's copy of the edge's faces
-    let passes = |pe: &PatchEdge| {
+    let passes = |pe: &RimEdge| {
         pe.f1 == NONE
             || pe.always
             || !one_way(normal[pe.f0 as usize].dot(d), normal[pe.f1 as usize].dot(d))

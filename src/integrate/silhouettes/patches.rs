@@ -45,17 +45,17 @@ pub enum Facing {
     Mixed,
 }
 
-/// An edge of a patch (between two of its faces, or on its rim) with what the search
-/// for folds asks of it before reading the edge itself: its faces, so that which way they
-/// face along a direction is read from their normals (at ~200k triangles the edges'
-/// table is larger than the cache, and most edges looked at are not folds).
+/// An edge on a patch's rim with what the search for folds asks of it before reading
+/// the edge itself: its faces, so that which way they face along a direction is read
+/// from their normals (at ~200k triangles the edges' table is larger than the cache, and
+/// most edges looked at are not folds).
 #[derive(Debug, Clone, Copy)]
-pub struct PatchEdge {
+pub struct RimEdge {
     pub edge: u32,
     /// Its faces; `f1` is [`NONE`] on a border.
     pub f0: u32,
     pub f1: u32,
-    /// The patch across it: its own for an edge inside it, [`NONE`] on a border.
+    /// The patch across it, [`NONE`] on a border.
     pub other: u32,
     /// Facing alone does not say that the surface does not fold here: its triangles
     /// wind the same way ([`super::topology::Edge::flipped`]), or one face's sheet is
@@ -65,7 +65,7 @@ pub struct PatchEdge {
 
 /// An edge between two faces of one patch: its index, its faces' places in the patch's
 /// list of faces (a patch holds at most [`MAX_FLAT_FACES`]), and whether facing alone
-/// does not say that the surface does not fold here ([`PatchEdge::always`]). Along a
+/// does not say that the surface does not fold here ([`RimEdge::always`]). Along a
 /// direction the search for folds finds which way each face of a patch that faces both
 /// ways faces once, then reads its inner edges' faces from that.
 #[derive(Debug, Clone, Copy)]
@@ -112,7 +112,7 @@ pub struct Patches {
     /// patch of the edge's first face), with the other side's patch ([`NONE`] on a
     /// border) (CSR).
     pub rim_at: Vec<u32>,
-    pub rim: Vec<PatchEdge>,
+    pub rim: Vec<RimEdge>,
     /// Per patch: an edge of its rim is a border of the mesh.
     pub border: Vec<bool>,
     /// Per patch: its neighbouring patches, each with the ways into it across an edge:
@@ -192,7 +192,7 @@ impl Patches {
     }
 
     #[inline]
-    pub fn rim_of(&self, p: usize) -> &[PatchEdge] {
+    pub fn rim_of(&self, p: usize) -> &[RimEdge] {
         &self.rim[self.rim_at[p] as usize..self.rim_at[p + 1] as usize]
     }
 
@@ -522,7 +522,7 @@ fn edges_by_patch(
     (faces_at, faces): (&[u32], &[u32]),
 ) -> (
     Csr<InnerEdge>,
-    Csr<PatchEdge>,
+    Csr<RimEdge>,
     (Vec<u32>, Vec<Link>, Vec<(u32, u32, u32)>),
 ) {
     let np = faces_at.len() - 1;
@@ -545,25 +545,24 @@ fn edges_by_patch(
         } else {
             of_face[e.f1 as usize]
         };
-        let item = PatchEdge {
-            edge: i as u32,
-            f0: e.f0,
-            f1: e.f1,
-            other: p1,
-            always: e.flipped
-                || (e.f1 != NONE && topo.open[e.f0 as usize] != topo.open[e.f1 as usize]),
-        };
+        let always =
+            e.flipped || (e.f1 != NONE && topo.open[e.f0 as usize] != topo.open[e.f1 as usize]);
         if p0 == p1 {
-            inner_items.push((
+            let at = (place[e.f0 as usize], place[e.f1 as usize]);
+            let edge = i as u32;
+            inner_items.push((p0, InnerEdge { edge, at, always }));
+        } else {
+            let (edge, f0, f1, other) = (i as u32, e.f0, e.f1, p1);
+            rim_items.push((
                 p0,
-                InnerEdge {
-                    edge: item.edge,
-                    at: (place[e.f0 as usize], place[e.f1 as usize]),
-                    always: item.always,
+                RimEdge {
+                    edge,
+                    f0,
+                    f1,
+                    other,
+                    always,
                 },
             ));
-        } else {
-            rim_items.push((p0, item));
         }
         if e.f1 != NONE && p0 != p1 {
             exit_items.push((p0, (i as u32, e.f0, e.f1)));

@@ -25,7 +25,8 @@
 //! 2. the folds are found inside the patches that face both ways and on the rims
 //!    between patches that face differently ([`folds`]);
 //! 3. the folds are binned across d, and each patch with faces to decide asks for the
-//!    folds above its box: a patch that faces along d and that none reaches is *clean*
+//!    folds above its box (a flat one keeps those that may shade its [`slab`]): a patch
+//!    that faces along d and that none reaches is *clean*
 //!    (one count for all its faces), and so is one whose faces no fold crosses; in the
 //!    others each face is tested against the folds found, and each fold that crosses it
 //!    becomes a line in its plane ([`direction`], [`lines`]);
@@ -62,6 +63,7 @@ mod patches;
 mod polygons;
 pub mod posed;
 mod rays;
+mod slab;
 mod sums;
 mod topology;
 

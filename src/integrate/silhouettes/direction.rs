@@ -157,12 +157,13 @@ impl Silhouettes<'_> {
         self.folds_above(dir, p);
         if whole && !dir.near.is_empty() {
             // of the folds over the patch's box, those that may shade its slab
-            let slab = &self.patches.slab[p];
-            let (folds, d, tol) = (&dir.folds, dir.across.d, self.tol);
-            dir.near.retain(|n| {
-                let f = &folds[n.fold as usize];
-                slab.may_shade(f.a, f.b, d, tol).unwrap_or(true)
-            });
+            if let Some(slab) = self.patches.slab[p].along(dir.across.d, self.tol) {
+                let folds = &dir.folds;
+                dir.near.retain(|n| {
+                    let f = &folds[n.fold as usize];
+                    slab.may_shade(f.a, f.b)
+                });
+            }
         }
         if whole && dir.near.is_empty() && !self.patches.contacts[p] {
             dir.patch[p] = PatchState::Clean;

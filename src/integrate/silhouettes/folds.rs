@@ -7,7 +7,7 @@
 //! between patches that face differently can be one: the search visits those, not every
 //! edge ([`super::patches`]).
 
-use super::patches::{Facing, Patches, RimEdge};
+use super::patches::{Facing, Patches, RimEdge, MAX_FLAT_FACES};
 use super::topology::{Edge, Topology, NONE};
 use glam::{DVec2, DVec3};
 
@@ -74,13 +74,15 @@ pub fn find(
             || pe.always
             || !one_way(normal[pe.f0 as usize].dot(d), normal[pe.f1 as usize].dot(d))
     };
-    let mut side: Vec<f64> = Vec::with_capacity(64);
+    // a patch's faces' n·d, in the order of its list (a patch holds at most
+    // MAX_FLAT_FACES)
+    let mut side = [0.0f64; MAX_FLAT_FACES];
     for p in 0..patches.len() {
         let fp = facing[p];
         if fp == Facing::Mixed {
-            let faces = patches.faces_of(p);
-            side.clear();
-            side.extend(faces.iter().map(|&f| normal[f as usize].dot(d)));
+            for (s, &f) in side.iter_mut().zip(patches.faces_of(p)) {
+                *s = normal[f as usize].dot(d);
+            }
             for inner in patches.inner_of(p) {
                 let (a, b) = (side[inner.at.0 as usize], side[inner.at.1 as usize]);
                 if inner.always || !one_way(a, b) {

@@ -26,7 +26,7 @@ const MAX_TURN_COS: f64 = 0.94;
 /// many patches to ask about per direction, while a crumpled one keeps small patches:
 /// 64 faces everywhere cost the crumpled fragment and the rocket body at 20k triangles
 /// 2–3 %, 16 everywhere the fine dishes 6–8 % (docs/performance.md, eleventh sitting).
-const MAX_FLAT_FACES: usize = 64;
+pub(super) const MAX_FLAT_FACES: usize = 64;
 /// Largest turn (cos, about 5.7°) of a face joining a patch past [`MAX_FACES`].
 const FLAT_TURN_COS: f64 = 0.995;
 

@@ -55,26 +55,60 @@ impl Slab {
         }
     }
 
-    /// Might the segment `a`–`b` shade some point of the slab along unit `d` (lie above
-    /// it, seen along d, within `tol`, m)? False only when no part of it lies above the
-    /// slab's far side, or the part that does passes beside the rectangle widened by
-    /// where the slab's thickness and `tol` can reach. `None` when d runs too close to
-    /// the plane for the bound to be worth its test.
+    /// The slab seen along unit `d`, within `tol` (m), ready to test segments against;
+    /// `None` when it is too thick for its bound to be worth the test, or d runs too
+    /// close to its plane. What depends on d alone is found here, once a patch.
     #[inline]
-    pub fn may_shade(&self, a: DVec3, b: DVec3, d: DVec3, tol: f64) -> Option<bool> {
+    pub fn along(&self, d: DVec3, tol: f64) -> Option<SlabAlong<'_>> {
         let nd = self.n.dot(d);
         if nd.abs() < 0.05 || self.thick > FLAT_SLAB * self.half.max_element() {
             return None;
         }
+        // a face point off the plane by at most `thick` lands within this of its own
+        // place when moved along d onto it; `tol` across d is at most tol/|n·d| in it
+        let reach = (self.thick * (1.0 - nd * nd).max(0.0).sqrt() + 2.0 * tol) / nd.abs();
+        Some(SlabAlong {
+            slab: self,
+            d,
+            nd,
+            tol,
+            reach: self.half + DVec2::splat(reach),
+        })
+    }
+}
+
+/// A [`Slab`] seen along a direction ([`Slab::along`]): d, n·d, the tolerance (m), and
+/// the rectangle's half extents widened by what the thickness and the tolerance reach.
+pub struct SlabAlong<'s> {
+    slab: &'s Slab,
+    d: DVec3,
+    nd: f64,
+    tol: f64,
+    reach: DVec2,
+}
+
+impl SlabAlong<'_> {
+    /// Might the segment `a`–`b` shade some point of the slab (lie above it, seen along
+    /// d, within the tolerance)? False only when no part of it lies above the slab's far
+    /// side, or the part that does passes beside the widened rectangle.
+    #[inline]
+    pub fn may_shade(&self, a: DVec3, b: DVec3) -> bool {
+        let SlabAlong {
+            slab,
+            d,
+            nd,
+            tol,
+            reach: h,
+        } = *self;
         // height off the plane towards d's side, from the slab's far side: a point below
         // that shades nothing of the slab
         let side = nd.signum();
         let (ha, hb) = (
-            side * self.n.dot(a - self.centre) + self.thick + tol,
-            side * self.n.dot(b - self.centre) + self.thick + tol,
+            side * slab.n.dot(a - slab.centre) + slab.thick + tol,
+            side * slab.n.dot(b - slab.centre) + slab.thick + tol,
         );
         if ha <= 0.0 && hb <= 0.0 {
-            return Some(false);
+            return false;
         }
         let (mut t0, mut t1) = (0.0, 1.0);
         if ha <= 0.0 {
@@ -84,21 +118,17 @@ impl Slab {
         }
         // the part above, along d onto the middle plane, in the rectangle's axes
         let onto = |x: DVec3| {
-            let y = x - d * (self.n.dot(x - self.centre) / nd);
-            DVec2::new(self.e1.dot(y - self.centre), self.e2.dot(y - self.centre))
+            let y = x - d * (slab.n.dot(x - slab.centre) / nd);
+            DVec2::new(slab.e1.dot(y - slab.centre), slab.e2.dot(y - slab.centre))
         };
         let (pa, pb) = (onto(a + (b - a) * t0), onto(a + (b - a) * t1));
-        // a face point off the plane by at most `thick` lands within this of its own
-        // place when moved along d onto it; `tol` across d is at most tol/|n·d| in it
-        let reach = (self.thick * (1.0 - nd * nd).max(0.0).sqrt() + 2.0 * tol) / nd.abs();
-        let h = self.half + DVec2::splat(reach);
         if pa.min(pb).cmpgt(h).any() || pa.max(pb).cmplt(-h).any() {
-            return Some(false);
+            return false;
         }
         let e = pb - pa;
         let s = |x: f64, y: f64| e.perp_dot(DVec2::new(x, y) - pa);
         let c = [s(-h.x, -h.y), s(h.x, -h.y), s(-h.x, h.y), s(h.x, h.y)];
-        Some(c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0))
+        c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0)
     }
 }
 
@@ -165,7 +195,7 @@ mod tests {
                         pick(next()) * 1.2
                     };
                     let c = pick(next()) + d * next();
-                    let Some(may) = slab.may_shade(a, c, d, 1e-9) else {
+                    let Some(may) = slab.along(d, 1e-9).map(|s| s.may_shade(a, c)) else {
                         continue;
                     };
                     tested += 1;

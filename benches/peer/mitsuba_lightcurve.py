@@ -40,14 +40,31 @@ Install: benches/peer/setup.sh (idempotent), that is
 Run (from the repo root)
     python3 benches/peer/mitsuba_lightcurve.py MESH.obj REQUEST.json \
         [--epochs N] [--spp 16] [--res 256] [--threads T] [--materials lambert|timing] \
-        [--out curve.csv] [--summary suite-peer.csv --label NAME]
-    --out writes per epoch: index, t, intensity (m^2/sr), ms.  --summary
-    appends one row (label, triangles, ms_per_epoch, ...) for the suite chart.
+        [--scale S] [--out curve.csv] [--summary suite-peer.csv --label NAME]
+    --out writes per epoch: index, t, intensity (m^2/sr), ms, ray_offset.
+    --summary appends one row (label, triangles, ms_per_epoch, ...) for the
+    suite chart.
     Meshes: `glint export-objects --dir DIR` (built-in objects) or
     `./target/release/examples/scale --obj /tmp/fine_dish.obj 3 48 128 1`
     (the box-wing with a 48 x 128 fine dish).  Dr.Jit caches compiled kernels
     in ~/.drjit (a separate entry per thread count); remove it to time a cold
     compile.  Time on an idle machine: the LLVM backend uses every core.
+
+Light that leaks through the shadow rays' offset (--scale)
+    Mitsuba starts a shadow ray off the surface, along its normal, by
+    (1 + max|p|) * RayEpsilon (RayEpsilon = 1500 * 2^-24 ~ 8.9e-5, f32;
+    mitsuba/render/interaction.h, offset_p).  Where a surface is shadowed by a
+    neighbour meeting it at a concave crease, a band along the crease about
+    that offset wide is lit when it should be dark, so the peer reads high in
+    proportion to the offset relative to the object's size (a crumpled
+    fragment at 1.8 m: +2e-4 to +5e-3 of each epoch, growing with phase).
+    --scale S renders the mesh scaled by S (intensities are still written at
+    scale 1, divided by S^2) and the CSV's ray_offset column gives the offset
+    relative to the mesh's size, (1 + S m) * RayEpsilon / (S m) with m its
+    largest coordinate: two runs at different scales (1 and 10; at 0.1 the
+    offset is an eighth of a side of the 200k-triangle fragment's triangles
+    and the leak no longer grows in proportion) let
+    benches/peer/compare.py --peer2 extrapolate each epoch to no offset.
 """
 import time
 
@@ -101,8 +118,13 @@ def bsdf_for(name, mat, mode):
     return bsdf
 
 
-def split_obj(path, outdir):
-    """Write one OBJ per usemtl group (Mitsuba's loader ignores usemtl); return files, radius."""
+# Mitsuba's RayEpsilon<float> (mitsuba/core/math.h: dr::Epsilon<float32> * 1500)
+RAY_EPSILON = 1500 * 2.0**-24
+
+
+def split_obj(path, outdir, scale=1.0):
+    """Write one OBJ per usemtl group (Mitsuba's loader ignores usemtl), its vertices
+    scaled by `scale`; return files, bounding radius and largest |coordinate| (scaled)."""
     verts, groups, cur = [], {}, "default"
     with open(path) as f:
         for line in f:
@@ -118,7 +140,7 @@ def split_obj(path, outdir):
                 idx = [i - 1 if i > 0 else len(verts) + i for i in idx]
                 for k in range(1, len(idx) - 1):  # fan-triangulate polygons
                     groups.setdefault(cur, []).append([idx[0], idx[k], idx[k + 1]])
-    verts = np.array(verts)
+    verts = np.array(verts) * scale
     files = {}
     for name, faces in groups.items():
         faces = np.array(faces)
@@ -128,7 +150,7 @@ def split_obj(path, outdir):
             f.writelines(f"v {x:.17g} {y:.17g} {z:.17g}\n" for x, y, z in verts[used])
             f.writelines(f"f {a} {b} {c}\n" for a, b, c in inv.reshape(-1, 3) + 1)
         files[name] = (fn, len(faces))
-    return files, float(np.linalg.norm(verts, axis=1).max())
+    return files, float(np.linalg.norm(verts, axis=1).max()), float(np.abs(verts).max())
 
 
 def to_body(q, v):
@@ -171,7 +193,9 @@ def main():
     ap.add_argument("--threads", type=int, default=0, help="Dr.Jit worker threads (default: all cores)")
     ap.add_argument("--materials", choices=["lambert", "timing"], default="timing")
     ap.add_argument("--integrator", choices=["direct", "path"], default="direct")
-    ap.add_argument("--out", help="write 'index,t,intensity_m2_sr,ms' per epoch (CSV)")
+    ap.add_argument("--scale", type=float, default=1.0,
+                    help="render the mesh scaled by this (intensities written at scale 1; see above)")
+    ap.add_argument("--out", help="write 'index,t,intensity_m2_sr,ms,ray_offset' per epoch (CSV)")
     ap.add_argument("--summary", help="append 'label,triangles,ms_per_epoch,...' to this CSV")
     ap.add_argument("--label", default="", help="first column of the --summary row (e.g. the class)")
     a = ap.parse_args()
@@ -185,7 +209,7 @@ def main():
 
     t_load = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
-        files, radius = split_obj(a.obj, tmp)
+        files, radius, largest = split_obj(a.obj, tmp, a.scale)
         radius *= 1.01
         unknown = sorted(set(files) - set(mats))
         if unknown and a.materials == "lambert":
@@ -211,7 +235,10 @@ def main():
         scene = mi.load_dict(scene_dict)
     params = mi.traverse(scene)
     t_load = time.perf_counter() - t_load
-    pixel_area = (2 * radius / a.res) ** 2
+    # per unit of the unscaled mesh's area: intensities as at scale 1
+    pixel_area = (2 * radius / a.res) ** 2 / a.scale**2
+    # the shadow rays' offset relative to the mesh's size
+    ray_offset = (1 + largest) * RAY_EPSILON / largest
 
     sums, times = [], []
     for i, ep in enumerate(epochs):
@@ -234,7 +261,7 @@ def main():
           f"threads {dr.thread_count()}  {', '.join(sorted(llvm))}")
     print(f"mesh {triangles} triangles {dict((k, n) for k, (_, n) in files.items())}, "
           f"bounding radius {radius:.3f} m; {a.res}x{a.res} px, {a.spp} spp, integrator {a.integrator}, "
-          f"materials {a.materials}; {sum(1 for e in epochs if e.get('attitude') is not None)} of "
+          f"materials {a.materials}, scale {a.scale:g} (shadow-ray offset {ray_offset:.3g} of the size); {sum(1 for e in epochs if e.get('attitude') is not None)} of "
           f"{len(epochs)} epochs with an attitude")
     print(f"scene load {t_load:.2f} s; first epoch {1e3 * times[0]:.0f} ms (JIT compile or cache hit); "
           f"epochs 2-{a.warmup}: {', '.join(f'{1e3 * t:.0f}' for t in times[1:a.warmup])} ms")
@@ -245,8 +272,8 @@ def main():
         print(f"  epoch {i} t={epochs[i]['t']}: image sum {s:.4f}  intensity {s * pixel_area:.6g} m^2/sr")
     if a.out:
         with open(a.out, "w") as f:
-            f.write("index,t,intensity_m2_sr,ms\n")
-            f.writelines(f"{i},{ep['t']},{s * pixel_area:.9g},{1e3 * dt:.3f}\n"
+            f.write("index,t,intensity_m2_sr,ms,ray_offset\n")
+            f.writelines(f"{i},{ep['t']},{s * pixel_area:.9g},{1e3 * dt:.3f},{ray_offset:.6g}\n"
                          for i, (ep, s, dt) in enumerate(zip(epochs, sums, times)))
     if a.summary:
         new = not os.path.exists(a.summary) or os.path.getsize(a.summary) == 0

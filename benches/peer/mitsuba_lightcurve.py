@@ -57,11 +57,16 @@ Light that leaks through the shadow rays' offset (--scale)
     neighbour meeting it at a concave crease, a band along the crease about
     that offset wide is lit when it should be dark, so the peer reads high in
     proportion to the offset relative to the object's size (a crumpled
-    fragment at 1.8 m: +2e-4 to +5e-3 of each epoch, growing with phase).
+    fragment at 1.8 m and 20k triangles: +2e-4 to +5e-3 of each epoch,
+    growing with phase).
     --scale S renders the mesh scaled by S (intensities are still written at
     scale 1, divided by S^2) and the CSV's ray_offset column gives the offset
     relative to the mesh's size, (1 + S m) * RayEpsilon / (S m) with m its
-    largest coordinate: two runs at different scales (1 and 10; at 0.1 the
+    largest coordinate (where the leak is, |p| is smaller: the offset's part
+    that scales with the mesh, 1500 * 2^-24 * |p|, no scaling separates from
+    the light itself, so the extrapolation rests on this choice of m; with
+    the surface's mean largest coordinate instead, the fragment's dimmest
+    epochs move by up to 2e-3): two runs at different scales (1 and 10; at 0.1 the
     offset is an eighth of a side of the 200k-triangle fragment's triangles
     and the leak no longer grows in proportion) let
     benches/peer/compare.py --peer2 extrapolate each epoch to no offset.
@@ -199,6 +204,8 @@ def main():
     ap.add_argument("--summary", help="append 'label,triangles,ms_per_epoch,...' to this CSV")
     ap.add_argument("--label", default="", help="first column of the --summary row (e.g. the class)")
     a = ap.parse_args()
+    if not a.scale > 0:
+        ap.error(f"--scale must be positive, got {a.scale}")
 
     mi.set_variant("llvm_ad_rgb")
     if a.threads:

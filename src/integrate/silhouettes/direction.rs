@@ -6,7 +6,7 @@
 use super::folds::Fold;
 use super::lines::{self, Across, Line, LineGrid};
 use super::patches::Facing;
-use super::Silhouettes;
+use super::{polygons, Silhouettes};
 use glam::{DVec2, DVec3};
 
 /// A patch's state along one direction.
@@ -99,10 +99,7 @@ pub(super) struct Near {
 /// Does the line through fold `f` (across d) pass through the box `lo`–`hi`?
 #[inline]
 fn line_meets_box(f: &Fold, lo: DVec2, hi: DVec2) -> bool {
-    let e = f.pb - f.pa;
-    let s = |x: f64, y: f64| e.perp_dot(DVec2::new(x, y) - f.pa);
-    let c = [s(lo.x, lo.y), s(hi.x, lo.y), s(lo.x, hi.y), s(hi.x, hi.y)];
-    c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0)
+    polygons::line_meets_box(f.pa, f.pb, lo, hi)
 }
 
 /// A receiving face across d, bounded by its sphere: its box (m, widened by the

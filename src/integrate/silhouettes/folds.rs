@@ -90,26 +90,21 @@ pub fn find(
                 }
             }
         }
-        // a patch that faces one way, as do all its neighbours, has no fold on its rim
-        if fp != Facing::Mixed
-            && !patches.border[p]
-            && patches.links_of(p).iter().all(|l| {
-                let q = l.patch as usize;
-                facing[q] == fp && (fp == Facing::Along || patches.open[p] == patches.open[q])
-            })
-        {
+        // two patches facing one way meet without a fold, unless they face away and
+        // only one of them blocks that way (an open piece's face beside a closed one's)
+        let plain = |q: u32| {
+            q != NONE
+                && fp != Facing::Mixed
+                && facing[q as usize] == fp
+                && (fp == Facing::Along || patches.open[p] == patches.open[q as usize])
+        };
+        // so a patch whose every neighbour it meets plainly, and no border, has no fold
+        // on its rim
+        if !patches.border[p] && patches.links_of(p).iter().all(|l| plain(l.patch)) {
             continue;
         }
         for rim in patches.rim_of(p) {
-            let q = rim.other;
-            // two patches facing one way meet without a fold, unless they face away
-            // and only one of them blocks that way (an open piece's face beside a
-            // closed one's)
-            let plain = q != NONE
-                && fp != Facing::Mixed
-                && facing[q as usize] == fp
-                && (fp == Facing::Along || patches.open[p] == patches.open[q as usize]);
-            if !plain && passes(rim) {
+            if !plain(rim.other) && passes(rim) {
                 fold(rim.edge);
             }
         }

@@ -198,6 +198,16 @@ pub fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     (b - a).perp_dot(c - a)
 }
 
+/// Does the line through `a` and `b` pass through the box `lo`–`hi` (touching counts)?
+/// Its corners lie on both sides of the line, or on it.
+#[inline]
+pub fn line_meets_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
+    let e = b - a;
+    let s = |x: f64, y: f64| e.perp_dot(DVec2::new(x, y) - a);
+    let c = [s(lo.x, lo.y), s(hi.x, lo.y), s(lo.x, hi.y), s(hi.x, hi.y)];
+    c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0)
+}
+
 /// Does segment a–b come within `tol` of convex polygon `c` (separating axes)? `ccw`:
 /// whether `c` turns counter-clockwise. Knowing the winding, an edge's axis needs only
 /// the edge's own corner: the polygon lies wholly on its inner side.

@@ -2,7 +2,7 @@
 //! over a flat patch's box that pass beside or below all its faces are set aside before
 //! any face is read ([`super::Silhouettes::receivers`]).
 
-use super::polygons::Polygons;
+use super::polygons::{line_meets_box, Polygons};
 use glam::{DVec2, DVec3};
 
 /// Thickest slab, as a share of its rectangle's larger half extent, whose bound is
@@ -125,10 +125,7 @@ impl SlabAlong<'_> {
         if pa.min(pb).cmpgt(h).any() || pa.max(pb).cmplt(-h).any() {
             return false;
         }
-        let e = pb - pa;
-        let s = |x: f64, y: f64| e.perp_dot(DVec2::new(x, y) - pa);
-        let c = [s(-h.x, -h.y), s(h.x, -h.y), s(-h.x, h.y), s(h.x, h.y)];
-        c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0)
+        line_meets_box(pa, pb, -h, h)
     }
 }
 

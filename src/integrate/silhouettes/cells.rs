@@ -243,29 +243,32 @@ fn crosses(c: &[DVec2], (p, q): (DVec2, DVec2), tol: f64) -> bool {
         return false;
     }
     // clip the segment to the polygon: orientation-free, each edge's inward side is the
-    // side the polygon's centroid lies on
+    // side the polygon's centroid lies on. The edges' normals are not normalised: where the
+    // segment meets an edge's line (t, m along it) does not depend on their length, and
+    // only the test for a segment parallel to an edge needs it (no square root a corner)
     let centre = c.iter().copied().sum::<DVec2>() / c.len() as f64;
     let (mut t0, mut t1) = (0.0, len);
     let n = c.len();
+    let tol2 = tol * tol;
     for k in 0..n {
         let (a, b) = (c[k], c[(k + 1) % n]);
         let e = b - a;
-        let el = e.length();
+        let el2 = e.length_squared();
         // a split can leave two corners a rounding apart: their edge has no direction
         // to speak of, and a half-plane through it would cut the segment at random
-        if el <= tol {
+        if el2 <= tol2 {
             continue;
         }
-        let normal = e.perp() / el;
+        let normal = e.perp();
         let inward = if normal.dot(centre - a) >= 0.0 {
             1.0
         } else {
             -1.0
         };
-        let dist = inward * normal.dot(p - a); // ≥ 0 inside
+        let dist = inward * normal.dot(p - a); // ≥ 0 inside, times the edge's length
         let rate = inward * normal.dot(dir);
         if rate == 0.0 {
-            if dist < -tol {
+            if dist < -tol * el2.sqrt() {
                 return false;
             }
         } else {

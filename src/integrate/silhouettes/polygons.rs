@@ -199,13 +199,13 @@ pub fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
 }
 
 /// Does the line through `a` and `b` pass through the box `lo`–`hi` (touching counts)?
-/// Its corners lie on both sides of the line, or on it.
+/// Its corners lie on both sides of the line, or on it: the box's centre lies no farther
+/// from the line than the box reaches across it (one product across the line, not four).
 #[inline]
 pub fn line_meets_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
-    let e = b - a;
-    let s = |x: f64, y: f64| e.perp_dot(DVec2::new(x, y) - a);
-    let c = [s(lo.x, lo.y), s(hi.x, lo.y), s(lo.x, hi.y), s(hi.x, hi.y)];
-    c.iter().any(|&v| v >= 0.0) && c.iter().any(|&v| v <= 0.0)
+    let n = (b - a).perp();
+    let (centre, half) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
+    n.dot(centre - a).abs() <= n.abs().dot(half)
 }
 
 /// Does segment a–b come within `tol` of convex polygon `c` (separating axes)? `ccw`:

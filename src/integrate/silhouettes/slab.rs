@@ -71,18 +71,21 @@ impl Slab {
             slab: self,
             d,
             nd,
+            side: nd.signum(),
             tol,
             reach: self.half + DVec2::splat(reach),
         })
     }
 }
 
-/// A [`Slab`] seen along a direction ([`Slab::along`]): d, n·d, the tolerance (m), and
-/// the rectangle's half extents widened by what the thickness and the tolerance reach.
+/// A [`Slab`] seen along a direction ([`Slab::along`]): d, n·d and its sign (the side of
+/// the plane d points to), the tolerance (m), and the rectangle's half extents widened by
+/// what the thickness and the tolerance reach.
 pub struct SlabAlong<'s> {
     slab: &'s Slab,
     d: DVec3,
     nd: f64,
+    side: f64,
     tol: f64,
     reach: DVec2,
 }
@@ -97,12 +100,12 @@ impl SlabAlong<'_> {
             slab,
             d,
             nd,
+            side,
             tol,
             reach: h,
         } = *self;
         // height off the plane towards d's side, from the slab's far side: a point below
         // that shades nothing of the slab
-        let side = nd.signum();
         let (ha, hb) = (
             side * slab.n.dot(a - slab.centre) + slab.thick + tol,
             side * slab.n.dot(b - slab.centre) + slab.thick + tol,

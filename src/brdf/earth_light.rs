@@ -178,6 +178,8 @@ struct Glint {
     /// The largest tilt of h from the face's normal that a probe reaches, rad: the
     /// probes' light directions lie within twice it of the mirror direction.
     probe_tilt: f64,
+    /// Twice it: the cone about the mirror direction that holds every probe's light.
+    lobe: Spread,
     /// The probes' runs: run i from probe `ends[i]` to `ends[i + 1]` (`ends[SPANS]`: the
     /// last probe, [`probes`]).
     ends: [usize; SPANS + 1],
@@ -189,13 +191,14 @@ struct Glint {
 
 /// The tilts of h from n, α = atan(δ u), of a run of probes from u_a to u_b, as
 /// [`Glint::projected_given`] bounds their light directions: tan of the middle tilt, cos
-/// and sin of the last, and the run's width α_b − α_a (rad).
+/// and sin of the last, and the run's width α_b − α_a (as the half-angle of a cone that
+/// [`over_earth`] reads).
 #[derive(Debug, Clone, Copy)]
 struct Arc {
     tan_mid: f64,
     cos_b: f64,
     sin_b: f64,
-    width: f64,
+    width: Spread,
 }
 
 impl Arc {
@@ -205,7 +208,7 @@ impl Arc {
             tan_mid: (0.5 * (aa + ab)).tan(),
             cos_b: ab.cos(),
             sin_b: ab.sin(),
-            width: ab - aa,
+            width: Spread::new(ab - aa),
         }
     }
 }
@@ -265,6 +268,7 @@ impl<'a> EarthLight<'a> {
                         reach.cos()
                     },
                     probe_tilt: (slope * probes() as f64 * PROBE_STEP).atan(),
+                    lobe: Spread::new(2.0 * (slope * probes() as f64 * PROBE_STEP).atan()),
                     ends: span_ends,
                     arcs: std::array::from_fn(|i| {
                         // the runs, then all the probes (from ends[0] = 0 to ends[SPANS])
@@ -387,7 +391,7 @@ impl Glint {
         // direction (reflecting v about h rather than n turns it by twice their angle);
         // every h of the lobe faces the viewer when n·v > sin(tilt)
         let tilt = self.probe_tilt;
-        let whole = over_earth(&self.bounds, mirror, 2.0 * tilt, cr > tilt.sin());
+        let whole = over_earth(&self.bounds, mirror, self.lobe, cr > tilt.sin());
         if whole == Whole::Dark {
             return 0.0;
         }
@@ -647,39 +651,86 @@ impl Glint {
 /// axis's angles from the centre and from the Sun, and the bilinear t (l·s) to those
 /// ranges' corners. Margins of 1e-9 rad and 1e-9 D keep rounding on the side of
 /// `Mixed`.
-fn over_earth(b: &EarthBounds, axis: DVec3, rho: f64, facing: bool) -> Whole {
-    const ANGLE: f64 = 1e-9;
+fn over_earth(b: &EarthBounds, axis: DVec3, rho: Spread, facing: bool) -> Whole {
     let EarthBounds {
         d,
         theta_e,
         os,
         centre_dir,
         sun_dir,
+        ..
     } = *b;
-    let rho = rho + ANGLE;
-    let gamma = axis.dot(centre_dir).clamp(-1.0, 1.0).acos();
-    let beta = axis.dot(sun_dir).clamp(-1.0, 1.0).acos();
-    let (g_lo, g_hi) = ((gamma - rho).max(0.0), gamma + rho);
-    if g_lo > theta_e + ANGLE {
+    let Spread {
+        rho,
+        cos: cr,
+        sin: sr,
+    } = rho;
+    // cos and sin of γ and β (in [0, π]: sin ≥ 0), and of the ends of their ranges by the
+    // angle-sum rules: the angles themselves are never needed
+    let (cg, cb) = (
+        axis.dot(centre_dir).clamp(-1.0, 1.0),
+        axis.dot(sun_dir).clamp(-1.0, 1.0),
+    );
+    let sine = |c: f64| ((1.0 - c) * (1.0 + c)).sqrt();
+    let (sg, sb) = (sine(cg), sine(cb));
+    // γ − ρ > θ_E + margin: every direction of the cone misses the Earth
+    if theta_e + ANGLE + rho < std::f64::consts::PI && cg < b.cos_beyond(cr, sr) {
         return Whole::Dark;
     }
     let r = EARTH_RADIUS_M;
-    let t = |g: f64| d * g.cos() - (r * r - (d * g.sin()).powi(2)).max(0.0).sqrt();
-    let (t_lo, t_hi) = (t(g_lo), t(g_hi.min(theta_e)));
-    let (ls_lo, ls_hi) = (
-        (beta + rho).min(std::f64::consts::PI).cos(),
-        (beta - rho).max(0.0).cos(),
-    );
+    let t = |(c, s): (f64, f64)| d * c - (r * r - (d * s).powi(2)).max(0.0).sqrt();
+    // max(γ − ρ, 0)
+    let lo = if cg >= cr {
+        (1.0, 0.0)
+    } else {
+        (cg * cr + sg * sr, sg * cr - cg * sr)
+    };
+    // γ + ρ (when within π) and min(γ + ρ, θ_E)
+    let sum = (cg >= -cr).then_some((cg * cr - sg * sr, sg * cr + cg * sr));
+    let hi = match sum {
+        Some((c, s)) if c > b.cos_e => (c, s),
+        _ => (b.cos_e, b.sin_e),
+    };
+    let (t_lo, t_hi) = (t(lo), t(hi));
+    // cos of min(β + ρ, π) and of max(β − ρ, 0)
+    let ls_lo = if cb < -cr { -1.0 } else { cb * cr - sb * sr };
+    let ls_hi = if cb >= cr { 1.0 } else { cb * cr + sb * sr };
     let margin = 1e-9 * d;
     let most = os + if ls_hi >= 0.0 { t_hi } else { t_lo } * ls_hi;
     if most < -margin {
         return Whole::Dark;
     }
     let least = os + if ls_lo >= 0.0 { t_lo } else { t_hi } * ls_lo;
-    if g_hi < theta_e - ANGLE && least > margin && facing {
+    // γ + ρ < θ_E − margin
+    let inside = sum.is_some_and(|(c, _)| c > b.cos_inner);
+    if inside && least > margin && facing {
         return Whole::Lit;
     }
     Whole::Mixed
+}
+
+/// Margin (rad) that keeps the rounding of [`over_earth`]'s angles on the side of `Mixed`.
+const ANGLE: f64 = 1e-9;
+
+/// The half-angle ρ of a cone as [`over_earth`] reads it: ρ widened by its margin
+/// ([`ANGLE`], rad), with its cos and sin found once (per epoch and material) rather
+/// than once a face.
+#[derive(Debug, Clone, Copy)]
+struct Spread {
+    rho: f64,
+    cos: f64,
+    sin: f64,
+}
+
+impl Spread {
+    fn new(rho: f64) -> Spread {
+        let rho = rho + ANGLE;
+        Spread {
+            rho,
+            cos: rho.cos(),
+            sin: rho.sin(),
+        }
+    }
 }
 
 /// The sunlit Earth as [`over_earth`] reads it, fixed for an epoch: the object's
@@ -692,17 +743,35 @@ struct EarthBounds {
     os: f64,
     centre_dir: DVec3,
     sun_dir: DVec3,
+    /// cos and sin of θ_E; of θ_E + margin; cos of θ_E − margin.
+    cos_e: f64,
+    sin_e: f64,
+    cos_outer: f64,
+    sin_outer: f64,
+    cos_inner: f64,
 }
 
 impl EarthBounds {
     fn of(e: &SunlitEarth) -> EarthBounds {
+        let theta_e = e.cos_cap.clamp(-1.0, 1.0).acos();
         EarthBounds {
             d: e.object.length(),
-            theta_e: e.cos_cap.clamp(-1.0, 1.0).acos(),
+            theta_e,
             os: e.object.dot(e.sun_dir),
             centre_dir: e.centre_dir,
             sun_dir: e.sun_dir,
+            cos_e: theta_e.cos(),
+            sin_e: theta_e.sin(),
+            cos_outer: (theta_e + ANGLE).cos(),
+            sin_outer: (theta_e + ANGLE).sin(),
+            cos_inner: (theta_e - ANGLE).cos(),
         }
+    }
+
+    /// cos(θ_E + margin + ρ) from ρ's cos `cr` and sin `sr`.
+    #[inline]
+    fn cos_beyond(&self, cr: f64, sr: f64) -> f64 {
+        self.cos_outer * cr - self.sin_outer * sr
     }
 }
 
@@ -798,7 +867,7 @@ mod tests {
             // axes near the Earth's disk, most of them
             let axis = (centre_dir + unit(&mut next) * (2.0 * next())).normalize();
             let rho = (0.1 + 19.9 * next()).to_radians();
-            let claim = over_earth(&EarthBounds::of(&earth), axis, rho, true);
+            let claim = over_earth(&EarthBounds::of(&earth), axis, Spread::new(rho), true);
             counts[claim as usize] += 1;
             if claim == Whole::Mixed {
                 continue;
@@ -964,7 +1033,7 @@ mod tests {
             let cr = n.dot(g.v);
             let mirror = 2.0 * cr * n - g.v;
             let facing = cr > g.probe_tilt.sin();
-            if over_earth(&g.bounds, mirror, 2.0 * g.probe_tilt, facing) != Whole::Lit {
+            if over_earth(&g.bounds, mirror, g.lobe, facing) != Whole::Lit {
                 continue;
             }
             let eight = g.lit_throughout(&frame, n, orthonormal_basis(n));

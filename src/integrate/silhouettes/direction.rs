@@ -319,8 +319,14 @@ impl Silhouettes<'_> {
             lines,
             ..
         } = dir;
+        // without short circuits: the five outcomes are hard to predict, and which one
+        // rejects a fold varies from fold to fold
         let misses = |n: &Near, lo: DVec2, hi: DVec2, bottom: f64| {
-            n.top <= bottom || n.lo.cmpgt(hi).any() || n.hi.cmplt(lo).any()
+            (n.top <= bottom)
+                | (n.lo.x > hi.x)
+                | (n.lo.y > hi.y)
+                | (n.hi.x < lo.x)
+                | (n.hi.y < lo.y)
         };
         let Some(first) = near
             .iter()

@@ -303,16 +303,14 @@ fn outside_notch(polys: &Polygons, f: usize, fold: &Fold, eps: f64) -> bool {
 /// side of the path by one test, so a path through a joint crosses exactly one of them.
 #[inline]
 pub fn crossed(lines: &[Line], x: DVec2, y: DVec2) -> i32 {
+    // all four sides found, with no branch: which test ends a line is hard to predict
     let mut n = 0;
     for l in lines {
         let (sx, sy) = (orient(l.p, l.q, x) > 0.0, orient(l.p, l.q, y) > 0.0);
-        if sx == sy {
-            continue;
-        }
-        if (orient(x, y, l.p) > 0.0) == (orient(x, y, l.q) > 0.0) {
-            continue;
-        }
-        n += if sy { l.jump } else { -l.jump };
+        let (sp, sq) = (orient(x, y, l.p) > 0.0, orient(x, y, l.q) > 0.0);
+        let across = i32::from(sx != sy) & i32::from(sp != sq);
+        let sign = 2 * i32::from(sy) - 1;
+        n += across * sign * l.jump;
     }
     n
 }

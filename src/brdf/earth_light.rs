@@ -8,8 +8,9 @@
 //! for a material whose lobe slope is below [`GLINT_BELOW`] patches, the beams carry the
 //! diffuse part only and the specular part is integrated per face over the lobe itself:
 //! nodes in the half vector h about the face's normal, Gauss–Laguerre in s = tan²α/δ²
-//! (the Beckmann lobe is e^−s in it) and even azimuths, each looking up the Earth's
-//! radiance along its light direction l = 2(v·h)h − v. With
+//! (the Beckmann lobe is e^−s in it) and even azimuths (32; 8 on a face whose whole lobe
+//! is proven to see the lit Earth, where the integrand is smooth in azimuth), each looking
+//! up the Earth's radiance along its light direction l = 2(v·h)h − v. With
 //! dΩ_l = 4(v·h) dΩ_h and dΩ_h = δ² cos³α / 2 ds dφ,
 //!
 //! ```text
@@ -254,6 +255,7 @@ impl<'a> EarthLight<'a> {
                 if slope > 0.0 && slope < GLINT_BELOW * shine.patch && !shine.beams.is_empty() =>
             {
                 let tan_max = slope * laguerre().last().map_or(0.0, |n| n.0).sqrt();
+                let probe_tilt = (slope * probes() as f64 * PROBE_STEP).atan();
                 let reach = earth.cos_cap.clamp(-1.0, 1.0).acos() + 2.0 * tan_max.atan();
                 let span_ends: [usize; SPANS + 1] = std::array::from_fn(|i| i * probes() / SPANS);
                 Some(Glint {
@@ -267,8 +269,8 @@ impl<'a> EarthLight<'a> {
                     } else {
                         reach.cos()
                     },
-                    probe_tilt: (slope * probes() as f64 * PROBE_STEP).atan(),
-                    lobe: Spread::new(2.0 * (slope * probes() as f64 * PROBE_STEP).atan()),
+                    probe_tilt,
+                    lobe: Spread::new(2.0 * probe_tilt),
                     ends: span_ends,
                     arcs: std::array::from_fn(|i| {
                         // the runs, then all the probes (from ends[0] = 0 to ends[SPANS])

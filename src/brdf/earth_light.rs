@@ -411,13 +411,7 @@ impl Glint {
             // the integrand at u = √s
             let at = |u: f64| self.density(frame, n, across, u);
             // the rule where the Earth is lit all along the azimuth
-            let plain = || {
-                nodes
-                    .iter()
-                    .zip(laguerre_roots())
-                    .map(|(&(_, w), &u)| w * at(u).unwrap_or(0.0))
-                    .sum::<f64>()
-            };
+            let plain = || self.along(frame, n, across);
             // Along one azimuth h turns about n × across, and l with it by twice the
             // angle: the light directions of the probes from u_a to u_b lie on an arc
             // within α_b − α_a of its middle one (tan α = δ u).
@@ -511,17 +505,22 @@ impl Glint {
     fn lit_throughout(&self, frame: &Frame, n: DVec3, (t1, t2): (DVec3, DVec3)) -> f64 {
         let az = lit_azimuths();
         let step = TAU / az.len() as f64;
-        let nodes = laguerre();
         let mut sum = 0.0;
         for &(sp, cp) in az {
-            let across = t1 * cp + t2 * sp;
-            sum += nodes
-                .iter()
-                .zip(laguerre_roots())
-                .map(|(&(_, w), &u)| w * self.density(frame, n, across, u).unwrap_or(0.0))
-                .sum::<f64>();
+            sum += self.along(frame, n, t1 * cp + t2 * sp);
         }
         sum * step
+    }
+
+    /// The plain rule along the azimuth `across` (every node lit or not by itself):
+    /// Gauss–Laguerre in s over the integrand [`Glint::density`].
+    #[inline]
+    fn along(&self, frame: &Frame, n: DVec3, across: DVec3) -> f64 {
+        laguerre()
+            .iter()
+            .zip(laguerre_roots())
+            .map(|(&(_, w), &u)| w * self.density(frame, n, across, u).unwrap_or(0.0))
+            .sum()
     }
 
     /// Where the lit test of this azimuth ([`Glint::lit`]) changes between u = `lo`
@@ -589,32 +588,26 @@ impl Glint {
     /// the point met has the Sun above its horizon (cos z > 0; −1 where nothing is met).
     #[inline]
     fn margins(&self, n: DVec3, across: DVec3, u: f64) -> [(f64, bool); 3] {
-        let t = self.slope * u;
-        let h = (n + across * t).normalize();
+        let (vh, l) = self.probe(n, across, u);
+        let (meets, cos_z) = self.earth.sight(l);
+        let cos_z = cos_z.unwrap_or(-1.0);
+        [(vh, vh > 0.0), (meets, meets >= 0.0), (cos_z, cos_z > 0.0)]
+    }
+
+    /// The probe at u = √s on this azimuth: v·h, and the light direction l = 2(v·h)h − v.
+    #[inline]
+    fn probe(&self, n: DVec3, across: DVec3, u: f64) -> (f64, DVec3) {
+        let h = (n + across * (self.slope * u)).normalize();
         let vh = self.v.dot(h);
-        let l = 2.0 * vh * h - self.v;
-        let e = &self.earth;
-        let b = e.object.dot(l);
-        let c = e.object.length_squared() - EARTH_RADIUS_M * EARTH_RADIUS_M;
-        let meets = if b < 0.0 { b * b - c } else { -c - b * b };
-        let hit = b < 0.0 && meets >= 0.0;
-        let cos_z = if hit {
-            let t = -b - meets.sqrt();
-            ((e.object + l * t) / EARTH_RADIUS_M).dot(e.sun_dir)
-        } else {
-            -1.0
-        };
-        [(vh, vh > 0.0), (meets, hit), (cos_z, cos_z > 0.0)]
+        (vh, 2.0 * vh * h - self.v)
     }
 
     /// Is the Earth lit along the light direction of the probe at u = √s on this
     /// azimuth? (Given u, not s: √(u²) is u, so the root would only be paid for.)
     #[inline]
     fn lit(&self, n: DVec3, across: DVec3, u: f64) -> bool {
-        let t = self.slope * u;
-        let h = (n + across * t).normalize();
-        let vh = self.v.dot(h);
-        vh > 0.0 && self.earth.radiance(2.0 * vh * h - self.v) > 0.0
+        let (vh, l) = self.probe(n, across, u);
+        vh > 0.0 && self.earth.radiance(l) > 0.0
     }
 
     /// The integrand in s = tan²α/δ² along the azimuth `across` (a unit vector ⟂ n),
@@ -1008,12 +1001,7 @@ mod tests {
         let sum: f64 = (0..azimuths)
             .map(|j| {
                 let (sp, cp) = (step * (j as f64 + 0.5)).sin_cos();
-                let across = t1 * cp + t2 * sp;
-                laguerre()
-                    .iter()
-                    .zip(laguerre_roots())
-                    .map(|(&(_, w), &u)| w * g.density(frame, n, across, u).unwrap_or(0.0))
-                    .sum::<f64>()
+                g.along(frame, n, t1 * cp + t2 * sp)
             })
             .sum();
         sum * step

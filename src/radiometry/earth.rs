@@ -77,20 +77,30 @@ impl SunlitEarth {
     /// night side), W/(m²·sr).
     #[inline]
     pub fn radiance(&self, dir: DVec3) -> f64 {
+        match self.sight(dir) {
+            (_, Some(cos_z)) if cos_z > 0.0 => self.radiance_scale * cos_z,
+            _ => 0.0,
+        }
+    }
+
+    /// Where the unit direction `dir` meets the Earth: a margin smooth in `dir` that is
+    /// ≥ 0 exactly where it meets it in front (b² − c, b = o·dir < 0; −c − b² where
+    /// b ≥ 0, continuous at b = 0: the limb is its root), and the cos of the Sun's zenith
+    /// angle at the point met (`None` where it meets nothing).
+    #[inline]
+    pub fn sight(&self, dir: DVec3) -> (f64, Option<f64>) {
         let b = self.object.dot(dir);
         let c = self.object.length_squared() - EARTH_RADIUS_M * EARTH_RADIUS_M;
+        if b >= 0.0 {
+            return (-c - b * b, None);
+        }
         let disc = b * b - c;
-        if b >= 0.0 || disc < 0.0 {
-            return 0.0;
+        if disc < 0.0 {
+            return (disc, None);
         }
         let t = -b - disc.sqrt();
         let normal = (self.object + dir * t) / EARTH_RADIUS_M;
-        let cos_z = normal.dot(self.sun_dir);
-        if cos_z > 0.0 {
-            self.radiance_scale * cos_z
-        } else {
-            0.0
-        }
+        (disc, Some(normal.dot(self.sun_dir)))
     }
 }
 

@@ -3,8 +3,9 @@
 //! once; else the face cut by its lines into cells, each decided by its count (or by a
 //! ray where the count cannot be trusted); a face cut too finely sampled on a grid.
 
-use super::cells::area_centroid;
+use super::cells::{area_centroid, crosses};
 use super::direction::{Direction, FaceState, PatchState};
+use super::polygon_tree::Visit;
 use super::polygons::orient;
 use super::{lines, Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
 use glam::DVec2;
@@ -216,8 +217,8 @@ impl Silhouettes<'_> {
         let mut decide = |q: DVec2| self.decide(dirs, &status, face, q, memo, &mut rays);
         let (mut a_sun, mut a_earth) = (0.0, 0.0);
         if whole {
-            for i in 0..cells.len() {
-                let (a, c) = area_centroid(cells.cell(i));
+            let shaped = (0..cells.len()).map(|i| area_centroid(cells.cell(i)));
+            for (a, c) in shaped.chain(cells.wholes.iter().copied()) {
                 if a <= 0.0 {
                     continue;
                 }
@@ -267,20 +268,42 @@ impl Silhouettes<'_> {
                 cells.split(p, q - p, self.tol, usize::MAX);
             }
         } else {
-            for k in self.polys.of(face) {
-                let poly = &mut scratch.polygon;
+            let (lines, tol) = (&scratch.lines, self.tol);
+            let (cutter, poly) = (&mut scratch.cutter, &mut scratch.polygon);
+            let mut wholes = std::mem::take(&mut cells.wholes);
+            let mut cut = |k: usize| {
                 poly.clear();
                 poly.extend_from_slice(self.polys.corners2(k));
                 let room = MAX_CELLS.saturating_sub(cells.len());
-                whole &= scratch
-                    .cutter
-                    .cut(poly, &scratch.lines, self.tol, room, |c| {
-                        cells.push(c.iter().copied())
-                    });
-                if !whole {
-                    break;
+                whole &= cutter.cut(poly, lines, tol, room, |c| cells.push(c.iter().copied()));
+                !whole
+            };
+            match self.polys.trees.root(face) {
+                // a face of many polygons: a box no line crosses is one cell
+                Some(root) => {
+                    self.polys.trees.walk(
+                        root,
+                        |node| {
+                            let corners = node.corners();
+                            if lines.iter().any(|&l| crosses(&corners, l, tol)) {
+                                Visit::Open
+                            } else {
+                                wholes.push((node.area, node.point));
+                                Visit::Skip
+                            }
+                        },
+                        &mut cut,
+                    );
+                }
+                None => {
+                    for k in self.polys.of(face) {
+                        if cut(k) {
+                            break;
+                        }
+                    }
                 }
             }
+            cells.wholes = wholes;
         }
         whole
     }

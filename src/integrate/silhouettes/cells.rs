@@ -4,11 +4,15 @@
 
 use glam::DVec2;
 
-/// Convex cells in one flat buffer: `spans[i]` is cell i's range of `points`.
+/// Convex cells in one flat buffer: `spans[i]` is cell i's range of `points`. Beside
+/// them, *whole* cells: polygons of a face's tree under a box no line crosses, given by
+/// their area and a point inside one of them.
 #[derive(Default)]
 pub struct Cells {
     pub points: Vec<DVec2>,
     pub spans: Vec<(u32, u32)>,
+    /// (area, m²; a point inside, m) of each whole cell.
+    pub wholes: Vec<(f64, DVec2)>,
     next_points: Vec<DVec2>,
     next_spans: Vec<(u32, u32)>,
 }
@@ -17,6 +21,7 @@ impl Cells {
     pub fn clear(&mut self) {
         self.points.clear();
         self.spans.clear();
+        self.wholes.clear();
     }
 
     /// Adds a convex polygon (counter-clockwise or clockwise).
@@ -226,7 +231,7 @@ impl Cutter {
 /// Does segment (p, q) pass through the interior of convex polygon `c` (by more than
 /// `tol`)? Its part inside the polygon (Cyrus–Beck) must be longer than `tol`, and the
 /// polygon must lie on both sides of its line.
-fn crosses(c: &[DVec2], (p, q): (DVec2, DVec2), tol: f64) -> bool {
+pub fn crosses(c: &[DVec2], (p, q): (DVec2, DVec2), tol: f64) -> bool {
     let d = q - p;
     let len = d.length();
     if len <= tol {

@@ -263,11 +263,7 @@ pub fn crossing(polys: &Polygons, r: &Receiver, fold: &Fold, dir: &Across) -> Op
     // give the clipped part's
     let (ea, eb) = (polys.to2(f, fold.a - d * sa), polys.to2(f, fold.b - d * sb));
     let (p, q) = (ea + (eb - ea) * t0, ea + (eb - ea) * t1);
-    if across.is_none()
-        && !polys
-            .of(f)
-            .any(|k| segment_meets(p, q, polys.corners2(k), tol, true))
-    {
+    if across.is_none() && !polys.segment_meets_face(f, p, q, tol) {
         return None;
     }
     // The plane's coordinates turn the way (u, w) does seen along d when the face's

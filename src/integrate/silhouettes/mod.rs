@@ -11,7 +11,8 @@
 //! - a line where another piece of the mesh meets the face inside it (a *contact*: a
 //!   boom's foot on the bus), fixed in the body frame ([`topology`]).
 //!
-//! Built once per request: the faces as convex polygons in their planes ([`polygons`]),
+//! Built once per request: the faces as convex polygons in their planes ([`polygons`];
+//! a face of many, as a tree of their boxes: [`polygon_tree`]),
 //! the edges and adjacency ([`topology`]), where separate pieces meet ([`contacts`]),
 //! connected patches of faces with the cones of their normals ([`patches`]) and each
 //! patch's form Σ A n nᵀ for summing it whole ([`sums`]), and a hierarchy of the
@@ -60,6 +61,7 @@ mod folds;
 mod level_grid;
 mod lines;
 mod patches;
+mod polygon_tree;
 mod polygons;
 pub mod posed;
 mod rays;

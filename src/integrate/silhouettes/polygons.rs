@@ -5,6 +5,7 @@
 //! own plane coordinates (its basis (u, w) from a point of it), where a face is cut
 //! along the lines of the shadows that cross it and a ray's hit is tested.
 
+use super::polygon_tree::FaceTrees;
 use crate::geometry::articulation::Motion;
 use crate::geometry::{Faces, Mesh};
 use glam::{DVec2, DVec3};
@@ -32,6 +33,9 @@ pub struct Polygons {
     /// The corners, in the body frame (m) and in their face's plane coordinates (m).
     pub corners: Vec<DVec3>,
     pub corners2: Vec<DVec2>,
+    /// The faces of many polygons as trees of boxes in their planes (unchanged when a
+    /// face moves: its plane's coordinates move with it).
+    pub trees: FaceTrees,
 }
 
 impl Polygons {
@@ -51,6 +55,7 @@ impl Polygons {
             spans: Vec::new(),
             corners: Vec::new(),
             corners2: Vec::new(),
+            trees: FaceTrees::default(),
         };
         let (mut pts, mut ids, mut order, mut hull) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
@@ -113,7 +118,19 @@ impl Polygons {
             p.convex.push(convex);
             p.of_face.push((first, p.spans.len() as u32));
         }
+        p.trees = FaceTrees::build(&p.of_face, |k| p.corners2(k));
         p
+    }
+
+    /// Does segment a–b (in face `f`'s plane, m) come within `tol` (m) of one of the
+    /// face's polygons?
+    #[inline]
+    pub fn segment_meets_face(&self, f: usize, a: DVec2, b: DVec2, tol: f64) -> bool {
+        let meets = |k: usize| segment_meets(a, b, self.corners2(k), tol, true);
+        match self.trees.root(f) {
+            Some(root) => self.trees.segment_meets(root, a, b, tol, meets),
+            None => self.of(f).any(meets),
+        }
     }
 
     pub fn faces(&self) -> usize {

@@ -10,9 +10,10 @@ use super::polygons::orient;
 use super::{lines, Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
 use glam::DVec2;
 
-/// Most lines a direction may cut a face by for its ray answers to be shared between
-/// cells (a cell's side of each line is one bit of a `u64`).
-const MEMO_LINES: usize = 64;
+/// Most lines (with contacts) a direction may cut a face by for its ray answers to be
+/// shared between cells: finding a cell's region takes a test against each line, and
+/// past a few hundred those cost more than the ray they might save.
+const MEMO_LINES: usize = 256;
 
 /// One direction's ray answers on one face, shared between the cells of a region.
 ///
@@ -21,14 +22,22 @@ const MEMO_LINES: usize = 64;
 /// lines crosses, so they are all lit or all dark along it: one ray answers for every
 /// cell whose centroid lies there. The cells are cut by the other directions' lines
 /// too, so a face cut by the view and the Sun has more cells than either direction has
-/// regions.
+/// regions. (Where a boom stands on a face, the ring of its foot's contacts is as many
+/// lines as the boom has sides, 96 on the dish-sat's at 200k triangles, and the cells
+/// inside the ring are one region.)
 #[derive(Default)]
 pub(super) struct RayMemo {
     /// Whether the answers are shared on this face (convex, few enough lines).
     on: bool,
     lines: Vec<(DVec2, DVec2)>,
-    /// (side of each line, open along the direction).
-    answers: Vec<(u64, bool)>,
+    /// 64-bit words a region's key takes: one bit per line, its side.
+    words: usize,
+    /// The key of the point asked about last.
+    key: Vec<u64>,
+    /// The regions answered: their keys (`words` each) and whether they are open along
+    /// the direction.
+    keys: Vec<u64>,
+    answers: Vec<bool>,
 }
 
 impl RayMemo {
@@ -45,18 +54,22 @@ impl RayMemo {
         contacts: impl Iterator<Item = (DVec2, DVec2)>,
     ) {
         self.lines.clear();
+        self.keys.clear();
         self.answers.clear();
         self.lines
             .extend(lines.filter(|l| l.bounds).map(|l| (l.p, l.q)));
         push_new(&mut self.lines, contacts);
         self.on = convex && self.lines.len() <= MEMO_LINES;
+        self.words = self.lines.len().div_ceil(64).max(1);
     }
 
-    /// Which side of each line `q` lies on.
-    fn sides(&self, q: DVec2) -> u64 {
-        self.lines.iter().enumerate().fold(0, |m, (i, &(a, b))| {
-            m | u64::from(orient(a, b, q) > 0.0) << i
-        })
+    /// Sets `key` to which side of each line `q` lies on.
+    fn sides(&mut self, q: DVec2) {
+        self.key.clear();
+        self.key.resize(self.words, 0);
+        for (i, &(a, b)) in self.lines.iter().enumerate() {
+            self.key[i / 64] |= u64::from(orient(a, b, q) > 0.0) << (i % 64);
+        }
     }
 
     /// The answer at `q`: remembered for its region, or `ray()`'s (then remembered).
@@ -64,12 +77,17 @@ impl RayMemo {
         if !self.on {
             return ray();
         }
-        let key = self.sides(q);
-        if let Some(&(_, open)) = self.answers.iter().find(|(k, _)| *k == key) {
-            return open;
+        self.sides(q);
+        let known = self
+            .keys
+            .chunks_exact(self.words)
+            .position(|k| k == self.key);
+        if let Some(i) = known {
+            return self.answers[i];
         }
         let open = ray();
-        self.answers.push((key, open));
+        self.keys.extend_from_slice(&self.key);
+        self.answers.push(open);
         open
     }
 }
@@ -433,6 +451,51 @@ mod tests {
             });
         }
         assert_eq!(rays, 3, "no sharing on a face that is not convex");
+    }
+
+    #[test]
+    fn the_cells_inside_a_ring_of_a_hundred_contacts_share_one_ray() {
+        // a boom's foot: 100 contacts round a circle on a convex face, more than one
+        // 64-bit word of sides; every point inside the ring lies on the inner side of
+        // each contact's whole line, one region
+        let n = 100;
+        let at = |i: usize| {
+            let t = std::f64::consts::TAU * i as f64 / n as f64;
+            DVec2::new(t.cos(), t.sin())
+        };
+        let ring: Vec<(DVec2, DVec2)> = (0..n).map(|i| (at(i), at(i + 1))).collect();
+        let mut memo = RayMemo::default();
+        memo.reset(true, std::iter::empty(), ring.iter().copied());
+        assert_eq!(memo.words, 2);
+        let mut rays = 0;
+        for k in 0..50 {
+            let t = k as f64 * 0.7;
+            let r = 0.9 * (k as f64 / 50.0);
+            assert!(!memo.open(DVec2::new(r * t.cos(), r * t.sin()), || {
+                rays += 1;
+                false
+            }));
+        }
+        assert_eq!(rays, 1, "one ray inside the ring");
+        // outside it, beyond one contact (the 70th: in the second word) and beyond its
+        // opposite: two more regions, each its own ray and answer
+        let beyond = |i: usize| (at(i) + at(i + 1)) * 0.6;
+        for (q, open) in [(beyond(70), true), (beyond(20), true), (beyond(70), true)] {
+            assert_eq!(
+                memo.open(q, || {
+                    rays += 1;
+                    true
+                }),
+                open
+            );
+        }
+        assert_eq!(rays, 3);
+        // past MEMO_LINES, no sharing
+        let many: Vec<(DVec2, DVec2)> = (0..=MEMO_LINES)
+            .map(|i| (DVec2::new(i as f64, 5.0), DVec2::new(i as f64, 6.0)))
+            .collect();
+        memo.reset(true, std::iter::empty(), many.into_iter());
+        assert!(!memo.on);
     }
 
     #[test]

@@ -521,7 +521,46 @@ pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> 
     }
     // a point on the line: from a's segment
     let (p0, t0) = sa.2;
-    Some((p0 + line * (lo - t0), p0 + line * (hi - t0)))
+    let (p, q) = (p0 + line * (lo - t0), p0 + line * (hi - t0));
+    // Where the planes are nearly parallel, corners within tol of the other's plane are
+    // taken as on the line though they may lie far from it, and the overlap along the
+    // line says nothing of how far apart across it the two cuts are (two slivers of a
+    // finely meshed dish near its apex, sharing a corner, "met" along 5 mm): keep only
+    // the part of the segment within a few tol of both triangles.
+    let reach = 4.0 * tol;
+    let (u0, u1) = [a, b]
+        .iter()
+        .try_fold((0.0, 1.0), |(u0, u1), t| within(t, p, q, reach, u0, u1))?;
+    ((u1 - u0) * (q - p).length() > tol).then(|| (p + (q - p) * u0, p + (q - p) * u1))
+}
+
+/// The part `u0..u1` (parameters along p → q) of segment p–q that lies within `reach`
+/// (m) of triangle `t`'s plane and of its edges' lines inside it (the triangle widened by
+/// `reach`), or None when none does.
+fn within(t: &[DVec3; 3], p: DVec3, q: DVec3, reach: f64, u0: f64, u1: f64) -> Option<(f64, f64)> {
+    let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+    // each bound as g(x) = k·(x − o) + c ≥ 0, linear along the segment
+    let mut range = (u0, u1);
+    let mut keep = |k: DVec3, o: DVec3, c: f64| {
+        let (gp, gq) = (k.dot(p - o) + c, k.dot(q - o) + c);
+        if gp < 0.0 && gq < 0.0 {
+            return false;
+        }
+        if gp < 0.0 {
+            range.0 = f64::max(range.0, gp / (gp - gq));
+        } else if gq < 0.0 {
+            range.1 = f64::min(range.1, gp / (gp - gq));
+        }
+        range.0 <= range.1
+    };
+    let plane = keep(n, t[0], reach) && keep(-n, t[0], reach);
+    let edges = (0..3).all(|i| {
+        let e = t[(i + 1) % 3] - t[i];
+        // inward across the edge, in the plane (the corners turn counter-clockwise about n)
+        let inward = n.cross(e).normalize_or_zero();
+        keep(inward, t[i], reach)
+    });
+    (plane && edges).then_some(range)
 }
 
 /// Do triangle `t`'s corners all lie farther than `tol` (m) on one side of the plane
@@ -698,5 +737,49 @@ mod tests {
         let pierce = post.map(|v| v - DVec3::Z * 0.5);
         let (p, q) = meet(&plate, &pierce, 1e-9).expect("pierces");
         assert!(((p - q).length() - 0.2).abs() < 1e-12);
+    }
+
+    #[test]
+    fn two_slivers_of_a_fine_dish_near_its_apex_meet_only_at_their_shared_corner() {
+        // the box-wing's dish at 200k triangles: 400 sectors, rings 5 mm apart, so the
+        // triangles of the first rings are slivers 64 times longer than wide, their planes
+        // within 1e-4 rad of each other. Two of neighbouring quads that share one corner
+        // were found to meet along 5 mm (wrong: they touch at the corner only), which made
+        // 400 of the dish's faces decided by rays.
+        let (z0, f, sectors) = (1.2, 0.8, 400);
+        let at = |r: f64, j: usize| {
+            let phi = std::f64::consts::TAU * j as f64 / sectors as f64;
+            DVec3::new(r * phi.cos(), r * phi.sin(), z0 + r * r / (4.0 * f))
+        };
+        let tol = 6.6e-9;
+        for (r1, r2) in [(0.005, 0.01), (0.01, 0.015), (0.1, 0.105)] {
+            for j in [0, 7, 100, 333] {
+                let (a, b, c) = (at(r1, j), at(r2, j), at(r2, j + 1));
+                let (d, e) = (at(r1, j + 1), at(r2, j + 2));
+                let s = Tri {
+                    c: [a, b, c],
+                    w: [0, 1, 2],
+                };
+                let t = Tri {
+                    c: [d, c, e],
+                    w: [3, 2, 4],
+                };
+                assert!(meeting_of(&s, &t, tol).is_none(), "r {r1} sector {j}");
+                // whatever meet finds lies within a few tol of both
+                if let Some((p, q)) = meet(&s.c, &t.c, tol) {
+                    assert!((q - p).length() < 1e-6, "r {r1} sector {j}: {p} {q}");
+                }
+            }
+        }
+        // a sliver standing across another along 3 mm still meets it there
+        let flat = [at(0.005, 0), at(0.01, 0), at(0.01, 1)];
+        let mid = (flat[0] + flat[1] + flat[2]) / 3.0;
+        let up = [
+            mid - DVec3::X * 0.0015 - DVec3::Z * 1e-3,
+            mid + DVec3::X * 0.0015 - DVec3::Z * 1e-3,
+            mid + DVec3::Z * 1e-3,
+        ];
+        let (p, q) = meet(&flat, &up, tol).expect("a sliver standing across meets");
+        assert!((q - p).length() > 1e-5, "{p} {q}");
     }
 }

@@ -66,9 +66,14 @@ impl RayMemo {
     /// Sets `key` to which side of each line `q` lies on.
     fn sides(&mut self, q: DVec2) {
         self.key.clear();
-        self.key.resize(self.words, 0);
-        for (i, &(a, b)) in self.lines.iter().enumerate() {
-            self.key[i / 64] |= u64::from(orient(a, b, q) > 0.0) << (i % 64);
+        for chunk in self.lines.chunks(64) {
+            let word = chunk.iter().enumerate().fold(0, |m, (i, &(a, b))| {
+                m | u64::from(orient(a, b, q) > 0.0) << i
+            });
+            self.key.push(word);
+        }
+        if self.key.is_empty() {
+            self.key.push(0);
         }
     }
 
@@ -78,10 +83,14 @@ impl RayMemo {
             return ray();
         }
         self.sides(q);
-        let known = self
-            .keys
-            .chunks_exact(self.words)
-            .position(|k| k == self.key);
+        // most faces have at most 64 lines: a key of one word, compared as one
+        let known = if self.words == 1 {
+            self.keys.iter().position(|&k| k == self.key[0])
+        } else {
+            self.keys
+                .chunks_exact(self.words)
+                .position(|k| k == self.key)
+        };
         if let Some(i) = known {
             return self.answers[i];
         }

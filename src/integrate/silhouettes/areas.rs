@@ -296,12 +296,12 @@ impl Silhouettes<'_> {
             }
         } else {
             let (lines, tol) = (&scratch.lines, self.tol);
-            let (cutter, poly) = (&mut scratch.cutter, &mut scratch.polygon);
+            let cutter = &mut scratch.cutter;
             let mut wholes = std::mem::take(&mut cells.wholes);
+            // the cutter copies the polygon into its own buffer
             let mut cut = |k: usize| {
-                poly.clear();
-                poly.extend_from_slice(self.polys.corners2(k));
                 let room = MAX_CELLS.saturating_sub(cells.len());
+                let poly = self.polys.corners2(k);
                 whole &= cutter.cut(poly, lines, tol, room, |c| cells.push(c.iter().copied()));
                 !whole
             };

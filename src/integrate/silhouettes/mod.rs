@@ -124,7 +124,6 @@ pub struct Scratch {
     /// Per direction: ray answers shared between a face's cells.
     memo: [areas::RayMemo; 3],
     lines: Vec<(DVec2, DVec2)>,
-    polygon: Vec<DVec2>,
 }
 
 /// Per triangle its face, and per face whether its material is two-sided.

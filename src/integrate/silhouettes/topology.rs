@@ -377,16 +377,22 @@ fn adjacency(edges: &[Edge], nf: usize) -> (Vec<u32>, Vec<(u32, u32)>) {
 /// meets the next along one edge, not hundreds. Its shadow is the same line, so nothing
 /// changes but the count of shadows to search and cut along.
 fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec<Edge> {
-    let key = |e: &Edge| (e.f0.min(e.f1), e.f0.max(e.f1), e.valley, e.flipped);
+    // each edge's key (its faces, lower first, whether a valley, whether flipped), taken
+    // once in one pass: sorting and grouping by keys read through the edges (112 bytes
+    // each, in another order) cost a cache miss a comparison at ~200k triangles
+    let keys: Vec<(u32, u32, u8)> = edges
+        .iter()
+        .map(|e| {
+            let kind = u8::from(e.valley) << 1 | u8::from(e.flipped);
+            (e.f0.min(e.f1), e.f0.max(e.f1), kind)
+        })
+        .collect();
+    let key = |i: u32| keys[i as usize];
     // sorted by key, the index breaking ties: grouped by the lower face (a real face:
     // NONE is the largest u32), then each face's few edges by the rest, stably
-    let lower = |e: &Edge| e.f0.min(e.f1);
-    let nf = edges.iter().map(lower).max().map_or(0, |f| f as usize + 1);
-    let (at, mut order) = csr_of(
-        nf,
-        edges.iter().enumerate().map(|(i, e)| (lower(e), i as u32)),
-    );
-    sort_within(&at, &mut order, |&i| key(&edges[i as usize]));
+    let nf = keys.iter().map(|k| k.0).max().map_or(0, |f| f as usize + 1);
+    let (at, mut order) = csr_of(nf, keys.iter().enumerate().map(|(i, k)| (k.0, i as u32)));
+    sort_within(&at, &mut order, |&i| key(i));
     let mut out = Vec::with_capacity(edges.len());
     let mut used = vec![false; edges.len()];
     // (vertex, edge) of one group, sorted by vertex
@@ -399,7 +405,7 @@ fn merge_in_line(edges: &[Edge], ends: &[(u32, u32)], vertices: &[DVec3]) -> Vec
             a
         }
     };
-    for group in order.chunk_by(|&i, &j| key(&edges[i as usize]) == key(&edges[j as usize])) {
+    for group in order.chunk_by(|&i, &j| key(i) == key(j)) {
         if group.len() == 1 {
             out.push(edges[group[0] as usize]);
             continue;

@@ -528,17 +528,26 @@ pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> 
     // finely meshed dish near its apex, sharing a corner, "met" along 5 mm): keep only
     // the part of the segment within a few tol of both triangles.
     let reach = 4.0 * tol;
-    let (u0, u1) = [a, b]
+    let (u0, u1) = [(a, na), (b, nb)]
         .iter()
-        .try_fold((0.0, 1.0), |(u0, u1), t| within(t, p, q, reach, u0, u1))?;
+        .try_fold((0.0, 1.0), |(u0, u1), &(t, n)| {
+            within(t, n, p, q, reach, u0, u1)
+        })?;
     ((u1 - u0) * (q - p).length() > tol).then(|| (p + (q - p) * u0, p + (q - p) * u1))
 }
 
 /// The part `u0..u1` (parameters along p → q) of segment p–q that lies within `reach`
-/// (m) of triangle `t`'s plane and of its edges' lines inside it (the triangle widened by
-/// `reach`), or None when none does.
-fn within(t: &[DVec3; 3], p: DVec3, q: DVec3, reach: f64, u0: f64, u1: f64) -> Option<(f64, f64)> {
-    let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+/// (m) of triangle `t`'s plane (unit normal `n`, as [`meet`] found it) and of its edges'
+/// lines inside it (the triangle widened by `reach`), or None when none does.
+fn within(
+    t: &[DVec3; 3],
+    n: DVec3,
+    p: DVec3,
+    q: DVec3,
+    reach: f64,
+    u0: f64,
+    u1: f64,
+) -> Option<(f64, f64)> {
     // each bound as g(x) = k·(x − o) + c ≥ 0, linear along the segment
     let mut range = (u0, u1);
     let mut keep = |k: DVec3, o: DVec3, c: f64| {

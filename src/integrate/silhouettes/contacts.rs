@@ -143,28 +143,55 @@ pub(super) fn contact_segments(
     tol: f64,
     grid: Option<TriangleGrid>,
 ) -> Vec<(u32, Contact)> {
-    if mesh.triangles.len() < 2 {
-        return Vec::new();
+    MeetingPairs::find(mesh, welded, tri_face, group, tol, grid).on_faces(mesh, tri_face, tol)
+}
+
+/// The pairs of triangles that meet as separate pieces, with the segment (m) where each
+/// pair does, before they are told which face they belong to: the search reads only
+/// which triangles share a face, never how the faces are numbered, so it may run while
+/// the faces are renumbered ([`super::Silhouettes::build_ordered`]).
+pub(super) struct MeetingPairs(Vec<(u32, u32, (DVec3, DVec3))>);
+
+impl MeetingPairs {
+    /// The pairs of `mesh`'s triangles (welded ids `welded`, faces `tri_face` in any
+    /// numbering) that meet ([`contact_segments`] says which).
+    pub fn find(
+        mesh: &Mesh,
+        welded: &[u32],
+        tri_face: &[u32],
+        group: Option<&[u32]>,
+        tol: f64,
+        grid: Option<TriangleGrid>,
+    ) -> MeetingPairs {
+        if mesh.triangles.len() < 2 {
+            return MeetingPairs(Vec::new());
+        }
+        let TriangleGrid {
+            boxes,
+            mut grid,
+            tol: binned_at,
+        } = grid.unwrap_or_else(|| TriangleGrid::build(mesh, tol));
+        debug_assert_eq!(binned_at, tol, "the grid was binned at another tolerance");
+        grid.mark_faces(tri_face);
+        let found = Found {
+            mesh,
+            welded,
+            tri_face,
+            group,
+            boxes: &boxes,
+            tol,
+        };
+        let mut pairs = meeting_pairs(&found, &grid);
+        // in one order whatever found them: a face's pieces are joined from the first one on
+        pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
+        MeetingPairs(pairs)
     }
-    let TriangleGrid {
-        boxes,
-        mut grid,
-        tol: binned_at,
-    } = grid.unwrap_or_else(|| TriangleGrid::build(mesh, tol));
-    debug_assert_eq!(binned_at, tol, "the grid was binned at another tolerance");
-    grid.mark_faces(tri_face);
-    let found = Found {
-        mesh,
-        welded,
-        tri_face,
-        group,
-        boxes: &boxes,
-        tol,
-    };
-    let mut pairs = meeting_pairs(&found, &grid);
-    // in one order whatever found them: a face's pieces are joined from the first one on
-    pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
-    join_pieces(&pairs, |t| mesh.corners(t), tri_face, tol)
+
+    /// The contacts on the faces of `tri_face` (the numbering they keep; the same
+    /// triangles share a face as when the pairs were found).
+    pub fn on_faces(&self, mesh: &Mesh, tri_face: &[u32], tol: f64) -> Vec<(u32, Contact)> {
+        join_pieces(&self.0, |t| mesh.corners(t), tri_face, tol)
+    }
 }
 
 /// What the contact search needs of the mesh alone, before its faces are known: the

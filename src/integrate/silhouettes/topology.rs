@@ -124,27 +124,35 @@ impl Topology {
         tol: f64,
         grid: Option<TriangleGrid>,
     ) -> Topology {
-        // `two_sided` is per face
-        // the welded edges that merging faces sorted, or sorted here when it did not
-        let (welded, sorted) = faces.welded_edges(mesh);
-        let (welded, sorted) = (&welded[..], &sorted[..]);
         // the edges and the contacts need only the welded mesh: found side by side (at
         // ~200k triangles each is tens of milliseconds, and the edges' steps run on one
         // thread)
-        let ((edges, open), contacts) = rayon::join(
-            || {
-                let mut found = edges_of(mesh, welded, sorted, tri_face, tol);
-                let open = open_faces(&mut found, tri_face, two_sided);
-                keep_solid_valleys(&mut found, mesh, faces, &open);
-                (
-                    merge_in_line(&found.edges, &found.ends, &mesh.vertices),
-                    open,
-                )
-            },
-            || contact_segments(mesh, welded, tri_face, group, tol, grid),
+        let (welded, _) = faces.welded_edges(mesh);
+        let (topo, contacts) = rayon::join(
+            || Topology::without_contacts(mesh, faces, tri_face, two_sided, tol),
+            || contact_segments(mesh, &welded, tri_face, group, tol, grid),
         );
+        topo.with_contacts(contacts)
+    }
+
+    /// The topology with no contacts yet ([`Topology::with_contacts`] adds them): the
+    /// edges, which faces meet across them, which pieces are open. `two_sided` is per
+    /// face.
+    pub fn without_contacts(
+        mesh: &Mesh,
+        faces: &Faces,
+        tri_face: &[u32],
+        two_sided: &[bool],
+        tol: f64,
+    ) -> Topology {
+        // the welded edges that merging faces sorted, or sorted here when it did not
+        let (welded, sorted) = faces.welded_edges(mesh);
+        let mut found = edges_of(mesh, &welded, &sorted, tri_face, tol);
+        let open = open_faces(&mut found, tri_face, two_sided);
+        keep_solid_valleys(&mut found, mesh, faces, &open);
+        let edges = merge_in_line(&found.edges, &found.ends, &mesh.vertices);
         let (adjacent_at, adjacent) = adjacency(&edges, faces.len());
-        let (contacts_at, contacts) = csr_of(faces.len(), contacts.iter().copied());
+        let (contacts_at, contacts) = csr_of(faces.len(), std::iter::empty());
         Topology {
             any_flipped: edges.iter().any(|e| e.flipped),
             edges,
@@ -154,6 +162,13 @@ impl Topology {
             contacts_at,
             contacts,
         }
+    }
+
+    /// This topology with `contacts` (per face: where another piece meets it), in place
+    /// of any it had.
+    pub fn with_contacts(mut self, contacts: Vec<(u32, Contact)>) -> Topology {
+        (self.contacts_at, self.contacts) = csr_of(self.open.len(), contacts.iter().copied());
+        self
     }
 
     /// The topology of the mesh with each face moved rigidly by `motion(face)` (no two

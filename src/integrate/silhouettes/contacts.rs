@@ -7,6 +7,7 @@ use super::level_grid::{LevelGrid, MIXED};
 use crate::geometry::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Where another piece meets a face: a segment in the face's plane (m) and the other
 /// piece's triangle (its corners, m, and its face) that meets the face along it. Above
@@ -143,50 +144,157 @@ pub(super) fn contact_segments(
     tol: f64,
     grid: Option<TriangleGrid>,
 ) -> Vec<(u32, Contact)> {
-    MeetingPairs::find(mesh, welded, tri_face, group, tol, grid).on_faces(mesh, tri_face, tol)
+    PairSearch::new(mesh, welded, tri_face, group, tol, grid)
+        .finish()
+        .on_faces(mesh, tri_face, tol)
 }
 
-/// The pairs of triangles that meet as separate pieces, with the segment (m) where each
-/// pair does, before they are told which face they belong to: the search reads only
-/// which triangles share a face, never how the faces are numbered, so it may run while
-/// the faces are renumbered ([`super::Silhouettes::build_ordered`]).
-pub(super) struct MeetingPairs(Vec<(u32, u32, (DVec3, DVec3))>);
+/// A segment (m) where two triangles meet: (lower index, higher index, segment).
+type Pair = (u32, u32, (DVec3, DVec3));
 
-impl MeetingPairs {
-    /// The pairs of `mesh`'s triangles (welded ids `welded`, faces `tri_face` in any
-    /// numbering) that meet ([`contact_segments`] says which).
-    pub fn find(
-        mesh: &Mesh,
-        welded: &[u32],
-        tri_face: &[u32],
-        group: Option<&[u32]>,
+/// The search for the pairs of triangles that meet as separate pieces, taken a piece of
+/// work at a time (a cell of the grid, then a triangle against the coarser levels) so
+/// that one thread may start it while the other does something else, and both finish it
+/// ([`PairSearch::run_until`], [`PairSearch::finish`]). It reads only which triangles
+/// share a face, never how the faces are numbered: it may run while they are renumbered
+/// ([`super::Silhouettes::build_ordered`]).
+pub(super) struct PairSearch<'a> {
+    mesh: &'a Mesh,
+    welded: &'a [u32],
+    tri_face: &'a [u32],
+    group: Option<&'a [u32]>,
+    tol: f64,
+    boxes: Vec<(DVec3, DVec3)>,
+    grid: LevelGrid,
+    /// Where each level's cells start in the order of the work, then where the
+    /// triangles asked against coarser levels start (the cells' count), and the end.
+    starts: Vec<usize>,
+    /// The work done (the first pieces, in order) and the pairs it found.
+    next: usize,
+    pairs: Vec<Pair>,
+}
+
+impl<'a> PairSearch<'a> {
+    /// The search over `mesh`'s triangles (welded ids `welded`, faces `tri_face` in any
+    /// numbering; with `group`, pairs only within one group; `grid`: the mesh's
+    /// [`TriangleGrid`] at `tol` when built already).
+    pub fn new(
+        mesh: &'a Mesh,
+        welded: &'a [u32],
+        tri_face: &'a [u32],
+        group: Option<&'a [u32]>,
         tol: f64,
         grid: Option<TriangleGrid>,
-    ) -> MeetingPairs {
-        if mesh.triangles.len() < 2 {
-            return MeetingPairs(Vec::new());
-        }
+    ) -> PairSearch<'a> {
         let TriangleGrid {
             boxes,
             mut grid,
             tol: binned_at,
-        } = grid.unwrap_or_else(|| TriangleGrid::build(mesh, tol));
+        } = match grid {
+            _ if mesh.triangles.len() < 2 => TriangleGrid {
+                boxes: Vec::new(),
+                grid: LevelGrid::build(&[], tol),
+                tol,
+            },
+            Some(grid) => grid,
+            None => TriangleGrid::build(mesh, tol),
+        };
         debug_assert_eq!(binned_at, tol, "the grid was binned at another tolerance");
         grid.mark_faces(tri_face);
-        let found = Found {
+        let mut starts = vec![0];
+        for level in &grid.levels {
+            starts.push(starts.last().unwrap() + level.keys.len());
+        }
+        starts.push(starts.last().unwrap() + boxes.len());
+        PairSearch {
             mesh,
             welded,
             tri_face,
             group,
-            boxes: &boxes,
             tol,
-        };
-        let mut pairs = meeting_pairs(&found, &grid);
+            boxes,
+            grid,
+            starts,
+            next: 0,
+            pairs: Vec::new(),
+        }
+    }
+
+    /// Does the work in order on this thread until `stop` is set or none is left.
+    pub fn run_until(&mut self, stop: &AtomicBool) {
+        self.run_while(|| !stop.load(Ordering::Relaxed));
+    }
+
+    /// Does the work in order while `go()`, asked before each piece, says so.
+    fn run_while(&mut self, mut go: impl FnMut() -> bool) {
+        let end = *self.starts.last().unwrap();
+        let found = self.found();
+        let (mut local, mut pairs) = (Vec::new(), Vec::new());
+        let mut next = self.next;
+        while next < end && go() {
+            let l = self.starts.partition_point(|&s| s <= next) - 1;
+            if l < self.grid.levels.len() {
+                cell_pairs(
+                    &found,
+                    &self.grid,
+                    l,
+                    next - self.starts[l],
+                    &mut local,
+                    &mut pairs,
+                );
+            } else {
+                triangle_pairs(&found, &self.grid, next - self.starts[l], &mut pairs);
+            }
+            next += 1;
+        }
+        self.next = next;
+        self.pairs.append(&mut pairs);
+    }
+
+    /// The rest of the work on every thread: every pair, sorted.
+    pub fn finish(mut self) -> MeetingPairs {
+        let mut pairs = std::mem::take(&mut self.pairs);
+        let found = &self.found();
+        let (grid, starts, next) = (&self.grid, &self.starts, self.next);
+        let levels = grid.levels.len();
+        // what is left of each level's cells, then of the triangles
+        let left =
+            |l: usize| next.clamp(starts[l], starts[l + 1]) - starts[l]..starts[l + 1] - starts[l];
+        let cells = (0..levels).into_par_iter().flat_map(|l| {
+            left(l).into_par_iter().map_init(Vec::new, move |local, i| {
+                let mut out = Vec::new();
+                cell_pairs(found, grid, l, i, local, &mut out);
+                out
+            })
+        });
+        let triangles = left(levels).into_par_iter().flat_map_iter(|s| {
+            let mut out = Vec::new();
+            triangle_pairs(found, grid, s, &mut out);
+            out
+        });
+        pairs.par_extend(cells.flatten_iter().chain(triangles));
         // in one order whatever found them: a face's pieces are joined from the first one on
         pairs.sort_unstable_by_key(|&(s, t, _)| (s, t));
         MeetingPairs(pairs)
     }
 
+    fn found(&self) -> Found<'_> {
+        Found {
+            mesh: self.mesh,
+            welded: self.welded,
+            tri_face: self.tri_face,
+            group: self.group,
+            boxes: &self.boxes,
+            tol: self.tol,
+        }
+    }
+}
+
+/// The pairs of triangles that meet as separate pieces, with the segment (m) where each
+/// pair does, before they are told which face they belong to.
+pub(super) struct MeetingPairs(Vec<Pair>);
+
+impl MeetingPairs {
     /// The contacts on the faces of `tri_face` (the numbering they keep; the same
     /// triangles share a face as when the pairs were found).
     pub fn on_faces(&self, mesh: &Mesh, tri_face: &[u32], tol: f64) -> Vec<(u32, Contact)> {
@@ -366,9 +474,18 @@ fn owns(a: u8, b: u8) -> bool {
     a | b == 0b111
 }
 
-/// Every pair of triangles (lower index first) of different faces, sharing no welded
-/// vertex, that meet, with the segment where they do.
-fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec3))> {
+/// The pairs of triangles (lower index first) of different faces, sharing no welded
+/// vertex, that meet, both binned at level `l`, that cell `i` of that level owns, with
+/// the segment where they do, appended to `out` (`local`: scratch for the cell's
+/// triangles).
+fn cell_pairs(
+    found: &Found,
+    grid: &LevelGrid,
+    l: usize,
+    i: usize,
+    local: &mut Vec<Binned>,
+    out: &mut Vec<Pair>,
+) {
     let Found {
         mesh,
         welded,
@@ -377,6 +494,61 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
         boxes,
         tol,
     } = *found;
+    let level = &grid.levels[l];
+    // a cell of one face's triangles holds no pair: pairs in one face are not contacts
+    if level.face.get(i).is_some_and(|&f| f != MIXED) {
+        return;
+    }
+    // each pair of the cell's triangles, read from a copy of them gathered once (a cell
+    // of k holds k²/2 pairs, and reading each pair's boxes and faces from the mesh's
+    // tables cost more than testing them)
+    let items = &level.binned[level.start[i] as usize..level.start[i + 1] as usize];
+    let cell = LevelGrid::coords(level.keys[i]);
+    local.clear();
+    local.extend(items.iter().map(|&t| {
+        let first = grid.first[t as usize];
+        let (lo, hi) = boxes[t as usize];
+        Binned {
+            t,
+            face: tri_face[t as usize],
+            corner: starts_in(first, cell),
+            lo,
+            hi,
+            tri: Tri::of(mesh, welded, t as usize),
+        }
+    }));
+    for (j, a) in local.iter().enumerate() {
+        for b in &local[j + 1..] {
+            if !owns(a.corner, b.corner)
+                || a.face == b.face
+                || !overlap((a.lo, a.hi), (b.lo, b.hi))
+                || group.is_some_and(|g| g[a.t as usize] != g[b.t as usize])
+            {
+                continue;
+            }
+            // the lower index first, as `meeting` is asked
+            let (lo, hi) = if a.t < b.t { (a, b) } else { (b, a) };
+            out.extend(meeting_of(&lo.tri, &hi.tri, tol).map(|seg| (lo.t, hi.t, seg)));
+        }
+    }
+}
+
+/// The pairs, as [`cell_pairs`] finds them, of triangle `s` with the triangles binned at
+/// coarser levels than its own: `s` asks those levels' cells that its box touches (a few
+/// each).
+fn triangle_pairs(found: &Found, grid: &LevelGrid, s: usize, out: &mut Vec<Pair>) {
+    let Found {
+        mesh,
+        welded,
+        tri_face,
+        group,
+        boxes,
+        tol,
+    } = *found;
+    let levels = grid.levels.len() as u8;
+    if grid.level[s] + 1 >= levels {
+        return;
+    }
     // a finer triangle s against a coarser one t (`first_s`: the cell of s's box's low
     // corner at t's level)
     let pair = |s: usize, t: usize, first_s: [u32; 3], cell: [u32; 3]| {
@@ -391,72 +563,15 @@ fn meeting_pairs(found: &Found, grid: &LevelGrid) -> Vec<(u32, u32, (DVec3, DVec
         let (lo, hi) = (s.min(t), s.max(t));
         meeting(mesh, welded, lo, hi, tol).map(|seg| (lo as u32, hi as u32, seg))
     };
-    // both at one level: cell by cell, each pair of its triangles, read from a copy of
-    // the cell's triangles gathered once (a cell of k holds k²/2 pairs, and reading each
-    // pair's boxes and faces from the mesh's tables cost more than testing them)
-    let within = grid.levels.par_iter().flat_map(|level| {
-        (0..level.keys.len())
-            .into_par_iter()
-            .map_init(Vec::new, |local: &mut Vec<Binned>, i| {
-                let mut out = Vec::new();
-                // a cell of one face's triangles holds no pair: pairs in one face are not
-                // contacts
-                if level.face.get(i).is_some_and(|&f| f != MIXED) {
-                    return out;
-                }
-                let items = &level.binned[level.start[i] as usize..level.start[i + 1] as usize];
-                let cell = LevelGrid::coords(level.keys[i]);
-                local.clear();
-                local.extend(items.iter().map(|&t| {
-                    let first = grid.first[t as usize];
-                    let (lo, hi) = boxes[t as usize];
-                    Binned {
-                        t,
-                        face: tri_face[t as usize],
-                        corner: starts_in(first, cell),
-                        lo,
-                        hi,
-                        tri: Tri::of(mesh, welded, t as usize),
-                    }
-                }));
-                for (j, a) in local.iter().enumerate() {
-                    for b in &local[j + 1..] {
-                        if !owns(a.corner, b.corner)
-                            || a.face == b.face
-                            || !overlap((a.lo, a.hi), (b.lo, b.hi))
-                            || group.is_some_and(|g| g[a.t as usize] != g[b.t as usize])
-                        {
-                            continue;
-                        }
-                        // the lower index first, as `meeting` is asked
-                        let (lo, hi) = if a.t < b.t { (a, b) } else { (b, a) };
-                        out.extend(meeting_of(&lo.tri, &hi.tri, tol).map(|seg| (lo.t, hi.t, seg)));
-                    }
-                }
-                out
-            })
-            .flatten_iter()
-    });
-    // one finer than the other: the finer asks the coarser levels' cells its box
-    // touches (a few each)
-    let levels = grid.levels.len() as u8;
-    let across = (0..boxes.len())
-        .into_par_iter()
-        .filter(|&s| grid.level[s] + 1 < levels)
-        .flat_map_iter(|s| {
-            let mut out = Vec::new();
-            for k in grid.level[s] + 1..levels {
-                let first_s = grid.cell_at(boxes[s].0, k);
-                grid.cells_near(boxes[s], k, Some(tri_face[s]), |key, items| {
-                    let cell = LevelGrid::coords(key);
-                    for &t in items {
-                        out.extend(pair(s, t as usize, first_s, cell));
-                    }
-                });
+    for k in grid.level[s] + 1..levels {
+        let first_s = grid.cell_at(boxes[s].0, k);
+        grid.cells_near(boxes[s], k, Some(tri_face[s]), |key, items| {
+            let cell = LevelGrid::coords(key);
+            for &t in items {
+                out.extend(pair(s, t as usize, first_s, cell));
             }
-            out
         });
-    within.chain(across).collect()
+    }
 }
 
 /// The pairs' segments as contacts, on both faces of each pair, with a face's pieces along
@@ -700,16 +815,13 @@ mod tests {
             .collect();
         let grid = LevelGrid::build(&boxes, tol);
         assert!(grid.levels.len() > 5, "{} levels", grid.levels.len());
-        let at = Found {
-            mesh: &mesh,
-            welded: &welded,
-            tri_face: &tri_face,
-            group: None,
-            boxes: &boxes,
+        let triangles = |grid| TriangleGrid {
+            boxes: boxes.clone(),
+            grid,
             tol,
         };
-        let mut found = meeting_pairs(&at, &grid);
-        found.sort_unstable_by_key(|&(s, t, _)| (s, t));
+        let search = |tri_face, grid| PairSearch::new(&mesh, &welded, tri_face, None, tol, grid);
+        let found = search(&tri_face, Some(triangles(grid))).finish().0;
         let truth = all_pairs(&mesh, &welded, tol);
         // the ball crosses the plate and the rod: dozens of pairs, each found once
         assert!(truth.len() > 40, "{} pairs", truth.len());
@@ -722,28 +834,43 @@ mod tests {
         let tri_face: Vec<u32> = (0..nt as u32)
             .map(|t| if t < 2 { 0 } else { 1 + t / 4 })
             .collect();
-        let mut grid = grid;
-        grid.mark_faces(&tri_face);
+        let whole = search(&tri_face, None);
         assert!(
-            grid.levels
+            whole
+                .grid
+                .levels
                 .iter()
                 .flat_map(|l| &l.face)
                 .any(|&f| f != MIXED),
             "some cell holds one face's triangles only"
         );
-        let at = Found {
-            tri_face: &tri_face,
-            ..at
-        };
-        let mut found = meeting_pairs(&at, &grid);
-        found.sort_unstable_by_key(|&(s, t, _)| (s, t));
         let across: Vec<_> = truth
             .iter()
             .filter(|p| tri_face[p.0 as usize] != tri_face[p.1 as usize])
             .copied()
             .collect();
         assert!(across.len() > 40, "{} pairs across faces", across.len());
-        assert_eq!(key(&found), key(&across));
+        let end = *whole.starts.last().unwrap();
+        assert_eq!(key(&whole.finish().0), key(&across));
+        // begun on one thread and stopped after any number of pieces (none, a cell, half
+        // the first level's cells, into the next level, into the triangles asked against
+        // coarser levels, all), then finished on all: the same pairs
+        let starts = search(&tri_face, None).starts;
+        let (first, cells) = (starts[1], starts[starts.len() - 2]);
+        for stop_after in [0, 1, first / 2, first + 3, cells + 3, end] {
+            let mut part = search(&tri_face, None);
+            let mut n = 0;
+            part.run_while(|| {
+                n += 1;
+                n <= stop_after
+            });
+            assert_eq!(part.next, stop_after);
+            assert_eq!(
+                key(&part.finish().0),
+                key(&across),
+                "stopped after {stop_after}"
+            );
+        }
     }
 
     #[test]

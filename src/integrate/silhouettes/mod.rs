@@ -72,7 +72,7 @@ mod topology;
 use crate::geometry::{Faces, Mesh};
 use crate::scene::Scene;
 use cells::{Cells, Cutter};
-use contacts::MeetingPairs;
+use contacts::PairSearch;
 pub use contacts::TriangleGrid;
 use direction::{Direction, FaceState, PatchState, UNKNOWN};
 use glam::{DVec2, DVec3};
@@ -81,6 +81,7 @@ use patches::order_by_patches;
 use patches::Patches;
 use polygons::Polygons;
 use rays::Rays;
+use std::sync::atomic::{AtomicBool, Ordering};
 pub use sums::PatchLight;
 use topology::Topology;
 
@@ -182,32 +183,38 @@ impl<'a> Silhouettes<'a> {
         let mesh = &scene.mesh;
         let eps = eps_of(mesh);
         // The contact search (a third of the work at ~200k triangles) reads only which
-        // triangles share a face, not how the faces are numbered: it runs beside the
-        // renumbering, which takes one thread, and everything built after it; only
-        // the contacts' faces are named in the final numbering.
+        // triangles share a face, not how the faces are numbered: the thread that would
+        // wait while the other renumbers them starts it, and both finish it beside the
+        // edges and the polygons.
         let face_as_merged = faces.triangle_faces(mesh.triangles.len());
         let welded = faces.welded_edges(mesh).0.into_owned();
-        let ((tri_face, polys, topo, mut patches, rays), pairs) = rayon::join(
+        let mut search = PairSearch::new(mesh, &welded, &face_as_merged, None, eps, grid);
+        let renumbered = AtomicBool::new(false);
+        rayon::join(
             || {
                 arrange(faces);
-                let faces = &*faces;
-                let (tri_face, two_sided) = face_tables(scene, faces);
-                // the polygons need only the faces, the patches and the rays only those
-                // and the topology: built two at a time
-                let (polys, topo) = rayon::join(
-                    || Polygons::build(mesh, faces, two_sided.clone()),
-                    || Topology::without_contacts(mesh, faces, &tri_face, &two_sided, eps),
-                );
-                let (patches, rays) = rayon::join(
-                    || Patches::build(&polys, &topo),
-                    || Rays::build(&polys, &topo.open),
-                );
-                (tri_face, polys, topo, patches, rays)
+                renumbered.store(true, Ordering::Relaxed);
             },
-            || MeetingPairs::find(mesh, &welded, &face_as_merged, None, eps, grid),
+            || search.run_until(&renumbered),
+        );
+        let faces = &*faces;
+        let (tri_face, two_sided) = face_tables(scene, faces);
+        // the topology and the polygons need only the faces, the patches and the rays
+        // only those two: built two at a time
+        let ((topo, pairs), polys) = rayon::join(
+            || {
+                rayon::join(
+                    || Topology::without_contacts(mesh, faces, &tri_face, &two_sided, eps),
+                    || search.finish(),
+                )
+            },
+            || Polygons::build(mesh, faces, two_sided.clone()),
         );
         let topo = topo.with_contacts(pairs.on_faces(mesh, &tri_face, eps));
-        patches.mark_contacts(&topo);
+        let (patches, rays) = rayon::join(
+            || Patches::build(&polys, &topo),
+            || Rays::build(&polys, &topo.open),
+        );
         Silhouettes::assemble(mesh, faces, (polys, topo, patches, rays), eps)
     }
 

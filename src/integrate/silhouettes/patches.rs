@@ -157,15 +157,6 @@ impl Patches {
         self.axis.len()
     }
 
-    /// Marks again which patches a contact runs through ([`Patches::contacts`]), from
-    /// `topo`'s: for patches grown before the contacts were found (they change nothing
-    /// else of a patch).
-    pub fn mark_contacts(&mut self, topo: &Topology) {
-        self.contacts = (0..self.len())
-            .map(|k| (self.faces_of(k).iter()).any(|&f| !topo.contacts_of(f as usize).is_empty()))
-            .collect();
-    }
-
     /// The patches of the same faces moved rigidly (`polys` and `topo` moved already),
     /// each patch's faces turned by `turn(patch)`: the cones turned, the boxes and which
     /// patches contacts run through found again.
@@ -181,8 +172,8 @@ impl Patches {
             p.axis[k] = turn(k) * self.axis[k];
             (p.centre[k], p.half[k]) = box_of(polys, m);
             p.slab[k] = Slab::of(polys, m, p.axis[k]);
+            p.contacts[k] = m.iter().any(|&f| !topo.contacts_of(f as usize).is_empty());
         }
-        p.mark_contacts(topo);
         p
     }
 

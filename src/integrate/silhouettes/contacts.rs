@@ -874,6 +874,23 @@ mod tests {
     }
 
     #[test]
+    fn a_mesh_of_one_triangle_or_none_has_no_pairs_and_no_work() {
+        for n in [0, 1] {
+            let mesh = Mesh {
+                vertices: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+                triangles: vec![[0, 1, 2]; n],
+                material_ids: vec![0; n],
+            };
+            let welded = mesh.welded_ids();
+            let tri_face = vec![0; n];
+            let mut search = PairSearch::new(&mesh, &welded, &tri_face, None, 1e-9, None);
+            search.run_while(|| true);
+            assert_eq!(search.next, 0, "{n} triangles");
+            assert!(search.finish().0.is_empty());
+        }
+    }
+
+    #[test]
     fn a_post_standing_on_a_plate_meets_it_along_its_foot() {
         // a vertical triangle whose bottom edge lies on the plate z = 0
         let plate = [

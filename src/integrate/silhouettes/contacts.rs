@@ -228,22 +228,14 @@ impl<'a> PairSearch<'a> {
     /// Does the work in order while `go()`, asked before each piece, says so.
     fn run_while(&mut self, mut go: impl FnMut() -> bool) {
         let end = *self.starts.last().unwrap();
-        let found = self.found();
         let (mut local, mut pairs) = (Vec::new(), Vec::new());
         let mut next = self.next;
         while next < end && go() {
             let l = self.starts.partition_point(|&s| s <= next) - 1;
             if l < self.grid.levels.len() {
-                cell_pairs(
-                    &found,
-                    &self.grid,
-                    l,
-                    next - self.starts[l],
-                    &mut local,
-                    &mut pairs,
-                );
+                self.cell_pairs(l, next - self.starts[l], &mut local, &mut pairs);
             } else {
-                triangle_pairs(&found, &self.grid, next - self.starts[l], &mut pairs);
+                self.triangle_pairs(next - self.starts[l], &mut pairs);
             }
             next += 1;
         }
@@ -254,22 +246,22 @@ impl<'a> PairSearch<'a> {
     /// The rest of the work on every thread: every pair, sorted.
     pub fn finish(mut self) -> MeetingPairs {
         let mut pairs = std::mem::take(&mut self.pairs);
-        let found = &self.found();
-        let (grid, starts, next) = (&self.grid, &self.starts, self.next);
-        let levels = grid.levels.len();
+        let search = &self;
+        let (starts, next) = (&self.starts, self.next);
+        let levels = self.grid.levels.len();
         // what is left of each level's cells, then of the triangles
         let left =
             |l: usize| next.clamp(starts[l], starts[l + 1]) - starts[l]..starts[l + 1] - starts[l];
         let cells = (0..levels).into_par_iter().flat_map(|l| {
             left(l).into_par_iter().map_init(Vec::new, move |local, i| {
                 let mut out = Vec::new();
-                cell_pairs(found, grid, l, i, local, &mut out);
+                search.cell_pairs(l, i, local, &mut out);
                 out
             })
         });
         let triangles = left(levels).into_par_iter().flat_map_iter(|s| {
             let mut out = Vec::new();
-            triangle_pairs(found, grid, s, &mut out);
+            search.triangle_pairs(s, &mut out);
             out
         });
         pairs.par_extend(cells.flatten_iter().chain(triangles));
@@ -278,14 +270,82 @@ impl<'a> PairSearch<'a> {
         MeetingPairs(pairs)
     }
 
-    fn found(&self) -> Found<'_> {
-        Found {
-            mesh: self.mesh,
-            welded: self.welded,
-            tri_face: self.tri_face,
-            group: self.group,
-            boxes: &self.boxes,
-            tol: self.tol,
+    /// The pairs of triangles (lower index first) of different faces, sharing no welded
+    /// vertex, that meet, both binned at level `l`, that cell `i` of that level owns, with
+    /// the segment where they do, appended to `out` (`local`: scratch for the cell's
+    /// triangles).
+    fn cell_pairs(&self, l: usize, i: usize, local: &mut Vec<Binned>, out: &mut Vec<Pair>) {
+        let (grid, group) = (&self.grid, self.group);
+        let level = &grid.levels[l];
+        // a cell of one face's triangles holds no pair: pairs in one face are not contacts
+        if level.face.get(i).is_some_and(|&f| f != MIXED) {
+            return;
+        }
+        // each pair of the cell's triangles, read from a copy of them gathered once (a cell
+        // of k holds k²/2 pairs, and reading each pair's boxes and faces from the mesh's
+        // tables cost more than testing them)
+        let items = &level.binned[level.start[i] as usize..level.start[i + 1] as usize];
+        let cell = LevelGrid::coords(level.keys[i]);
+        local.clear();
+        local.extend(items.iter().map(|&t| {
+            let first = grid.first[t as usize];
+            let (lo, hi) = self.boxes[t as usize];
+            Binned {
+                t,
+                face: self.tri_face[t as usize],
+                corner: starts_in(first, cell),
+                lo,
+                hi,
+                tri: Tri::of(self.mesh, self.welded, t as usize),
+            }
+        }));
+        for (j, a) in local.iter().enumerate() {
+            for b in &local[j + 1..] {
+                if !owns(a.corner, b.corner)
+                    || a.face == b.face
+                    || !overlap((a.lo, a.hi), (b.lo, b.hi))
+                    || group.is_some_and(|g| g[a.t as usize] != g[b.t as usize])
+                {
+                    continue;
+                }
+                // the lower index first, as `meeting` is asked
+                let (lo, hi) = if a.t < b.t { (a, b) } else { (b, a) };
+                out.extend(meeting_of(&lo.tri, &hi.tri, self.tol).map(|seg| (lo.t, hi.t, seg)));
+            }
+        }
+    }
+
+    /// The pairs, as [`PairSearch::cell_pairs`] finds them, of triangle `s` with the
+    /// triangles binned at coarser levels than its own: `s` asks those levels' cells that
+    /// its box touches (a few each).
+    fn triangle_pairs(&self, s: usize, out: &mut Vec<Pair>) {
+        let (grid, boxes, tri_face, group) = (&self.grid, &self.boxes, self.tri_face, self.group);
+        let levels = grid.levels.len() as u8;
+        if grid.level[s] + 1 >= levels {
+            return;
+        }
+        // a finer triangle s against a coarser one t (`first_s`: the cell of s's box's low
+        // corner at t's level)
+        let pair = |s: usize, t: usize, first_s: [u32; 3], cell: [u32; 3]| {
+            let (bs, bt, first_t) = (boxes[s], boxes[t], grid.first[t]);
+            if tri_face[s] == tri_face[t]
+                || group.is_some_and(|g| g[s] != g[t])
+                || !overlap(bs, bt)
+                || !owns(starts_in(first_s, cell), starts_in(first_t, cell))
+            {
+                return None;
+            }
+            let (lo, hi) = (s.min(t), s.max(t));
+            meeting(self.mesh, self.welded, lo, hi, self.tol).map(|seg| (lo as u32, hi as u32, seg))
+        };
+        for k in grid.level[s] + 1..levels {
+            let first_s = grid.cell_at(boxes[s].0, k);
+            grid.cells_near(boxes[s], k, Some(tri_face[s]), |key, items| {
+                let cell = LevelGrid::coords(key);
+                for &t in items {
+                    out.extend(pair(s, t as usize, first_s, cell));
+                }
+            });
         }
     }
 }
@@ -432,18 +492,7 @@ impl Across {
     }
 }
 
-/// What [`meeting_pairs`] looks through: the mesh, its welded ids, each triangle's face
-/// and group (pairs only within one, when given), and boxes (widened by `tol`).
-struct Found<'a> {
-    mesh: &'a Mesh,
-    welded: &'a [u32],
-    tri_face: &'a [u32],
-    group: Option<&'a [u32]>,
-    boxes: &'a [(DVec3, DVec3)],
-    tol: f64,
-}
-
-/// A triangle of a cell as [`meeting_pairs`] tests it against the cell's others: its
+/// A triangle of a cell as [`PairSearch::cell_pairs`] tests it against the cell's others: its
 /// index, face, box (widened, m), on which axes its box starts in the cell's row (bit i:
 /// axis i), and its corners.
 #[derive(Clone, Copy)]
@@ -472,106 +521,6 @@ fn starts_in(first: [u32; 3], cell: [u32; 3]) -> u8 {
 #[inline]
 fn owns(a: u8, b: u8) -> bool {
     a | b == 0b111
-}
-
-/// The pairs of triangles (lower index first) of different faces, sharing no welded
-/// vertex, that meet, both binned at level `l`, that cell `i` of that level owns, with
-/// the segment where they do, appended to `out` (`local`: scratch for the cell's
-/// triangles).
-fn cell_pairs(
-    found: &Found,
-    grid: &LevelGrid,
-    l: usize,
-    i: usize,
-    local: &mut Vec<Binned>,
-    out: &mut Vec<Pair>,
-) {
-    let Found {
-        mesh,
-        welded,
-        tri_face,
-        group,
-        boxes,
-        tol,
-    } = *found;
-    let level = &grid.levels[l];
-    // a cell of one face's triangles holds no pair: pairs in one face are not contacts
-    if level.face.get(i).is_some_and(|&f| f != MIXED) {
-        return;
-    }
-    // each pair of the cell's triangles, read from a copy of them gathered once (a cell
-    // of k holds k²/2 pairs, and reading each pair's boxes and faces from the mesh's
-    // tables cost more than testing them)
-    let items = &level.binned[level.start[i] as usize..level.start[i + 1] as usize];
-    let cell = LevelGrid::coords(level.keys[i]);
-    local.clear();
-    local.extend(items.iter().map(|&t| {
-        let first = grid.first[t as usize];
-        let (lo, hi) = boxes[t as usize];
-        Binned {
-            t,
-            face: tri_face[t as usize],
-            corner: starts_in(first, cell),
-            lo,
-            hi,
-            tri: Tri::of(mesh, welded, t as usize),
-        }
-    }));
-    for (j, a) in local.iter().enumerate() {
-        for b in &local[j + 1..] {
-            if !owns(a.corner, b.corner)
-                || a.face == b.face
-                || !overlap((a.lo, a.hi), (b.lo, b.hi))
-                || group.is_some_and(|g| g[a.t as usize] != g[b.t as usize])
-            {
-                continue;
-            }
-            // the lower index first, as `meeting` is asked
-            let (lo, hi) = if a.t < b.t { (a, b) } else { (b, a) };
-            out.extend(meeting_of(&lo.tri, &hi.tri, tol).map(|seg| (lo.t, hi.t, seg)));
-        }
-    }
-}
-
-/// The pairs, as [`cell_pairs`] finds them, of triangle `s` with the triangles binned at
-/// coarser levels than its own: `s` asks those levels' cells that its box touches (a few
-/// each).
-fn triangle_pairs(found: &Found, grid: &LevelGrid, s: usize, out: &mut Vec<Pair>) {
-    let Found {
-        mesh,
-        welded,
-        tri_face,
-        group,
-        boxes,
-        tol,
-    } = *found;
-    let levels = grid.levels.len() as u8;
-    if grid.level[s] + 1 >= levels {
-        return;
-    }
-    // a finer triangle s against a coarser one t (`first_s`: the cell of s's box's low
-    // corner at t's level)
-    let pair = |s: usize, t: usize, first_s: [u32; 3], cell: [u32; 3]| {
-        let (bs, bt, first_t) = (boxes[s], boxes[t], grid.first[t]);
-        if tri_face[s] == tri_face[t]
-            || group.is_some_and(|g| g[s] != g[t])
-            || !overlap(bs, bt)
-            || !owns(starts_in(first_s, cell), starts_in(first_t, cell))
-        {
-            return None;
-        }
-        let (lo, hi) = (s.min(t), s.max(t));
-        meeting(mesh, welded, lo, hi, tol).map(|seg| (lo as u32, hi as u32, seg))
-    };
-    for k in grid.level[s] + 1..levels {
-        let first_s = grid.cell_at(boxes[s].0, k);
-        grid.cells_near(boxes[s], k, Some(tri_face[s]), |key, items| {
-            let cell = LevelGrid::coords(key);
-            for &t in items {
-                out.extend(pair(s, t as usize, first_s, cell));
-            }
-        });
-    }
 }
 
 /// The pairs' segments as contacts, on both faces of each pair, with a face's pieces along

@@ -64,10 +64,10 @@ pub struct Direction {
     pub(super) face_lines: Vec<(u32, u32)>,
     pub(super) lines: Vec<Line>,
     pub(super) folds: Vec<Fold>,
-    /// Per edge: `fold_mark` when it is one of `folds` (so the flood need not test it
-    /// again).
-    pub(super) edge_mark: Vec<u32>,
-    pub(super) fold_mark: u32,
+    /// Per edge, a bit: whether it is one of `folds` (so the flood need not test it
+    /// again). Bits, not a stamp per edge: at ~200k triangles a stamp per edge (1.2 MB)
+    /// left the cache, and the flood asks about every edge it crosses.
+    pub(super) fold_bits: Vec<u64>,
     pub(super) grid: LineGrid,
     /// Per fold: the last patch query that met it (candidates once per patch).
     pub(super) stamp: Vec<u32>,
@@ -115,21 +115,17 @@ pub(super) struct Footprint {
 impl Direction {
     /// Marks the edges of `folds` (on a topology of `edges` edges).
     pub(super) fn mark_folds(&mut self, edges: usize) {
-        self.fold_mark = self.fold_mark.wrapping_add(1);
-        if self.fold_mark == 0 || self.edge_mark.len() != edges {
-            self.edge_mark.clear();
-            self.edge_mark.resize(edges, 0);
-            self.fold_mark = 1;
-        }
+        self.fold_bits.clear();
+        self.fold_bits.resize(edges.div_ceil(64), 0);
         for f in &self.folds {
-            self.edge_mark[f.edge as usize] = self.fold_mark;
+            self.fold_bits[f.edge as usize / 64] |= 1 << (f.edge % 64);
         }
     }
 
     /// Is edge `e` one of the folds found?
     #[inline]
     pub(super) fn is_fold(&self, e: u32) -> bool {
-        self.edge_mark[e as usize] == self.fold_mark
+        self.fold_bits[e as usize / 64] >> (e % 64) & 1 != 0
     }
 
     /// Face `f`'s lines (empty unless it is crossed).

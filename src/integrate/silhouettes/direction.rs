@@ -358,3 +358,36 @@ impl Silhouettes<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fold_on(edge: u32) -> Fold {
+        Fold {
+            a: DVec3::ZERO,
+            b: DVec3::X,
+            pa: DVec2::ZERO,
+            pb: DVec2::X,
+            top: 0.0,
+            jump: 1,
+            bounds: true,
+            faces: (0, 1),
+            edge,
+        }
+    }
+
+    #[test]
+    fn the_folds_edges_are_marked_and_no_others_each_time_they_are_marked_anew() {
+        let mut dir = Direction::default();
+        let edges = 200;
+        // across words of the bit table, at its ends, then fewer, then none
+        for set in [vec![0, 63, 64, 127, 199], vec![1, 64, 128], vec![]] {
+            dir.folds = set.iter().map(|&e| fold_on(e)).collect();
+            dir.mark_folds(edges);
+            for e in 0..edges as u32 {
+                assert_eq!(dir.is_fold(e), set.contains(&e), "edge {e} of {set:?}");
+            }
+        }
+    }
+}

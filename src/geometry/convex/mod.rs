@@ -35,15 +35,16 @@ const CHEAP_EXACT: usize = 20_000_000;
 /// True when every vertex lies on or behind the plane of every face (within a tolerance
 /// relative to the object's size). That is the exact condition for no self-shadowing of
 /// one-sided faces. A sample of corners in front of a sample of faces proves most meshes
-/// that are not convex so at once. Large meshes then try the local test — closed, connected, every
-/// edge convex — which implies global convexity (Tietze's theorem) in linear time; meshes
-/// failing every test are treated as non-convex, which only costs rays.
+/// that are not convex so at once. Large meshes then try the local test — closed,
+/// connected, every edge convex — which implies global convexity (Tietze's theorem) in
+/// linear time; meshes failing every test are treated as non-convex, which only costs
+/// rays.
 pub fn is_convex(mesh: &Mesh, faces: &Faces) -> bool {
     let (_, scale) = mesh.bounding_sphere();
     let tol = 1e-9 * scale;
     // a corner far in front of a face proves it at once (the tests below read every
-    // vertex against every face or every edge: ~1–3 ms of a 200k-triangle preparation,
-    // serial, before any of the rest can start)
+    // vertex against every face, or every edge on one thread: 1–3 ms at 200k triangles,
+    // before the rest of the preparation can start)
     !corner_in_front(mesh, faces, 1e3 * tol) && convex_by_every_vertex_or_edge(mesh, faces, tol)
 }
 
@@ -120,10 +121,16 @@ fn planar_by_every_corner(mesh: &Mesh, tol: f64) -> bool {
         .all(|&i| n.dot(mesh.vertices[i as usize] - p).abs() <= tol)
 }
 
-/// Corners sampled by [`too_thick_for_a_slab`] and [`corner_in_front`], at most.
-const SAMPLED_CORNERS: usize = 1024;
+/// Triangles sampled by [`too_thick_for_a_slab`] and [`corner_in_front`], at most.
+const SAMPLED_TRIANGLES: usize = 1024;
 /// Faces sampled by [`corner_in_front`], at most.
 const SAMPLED_FACES: usize = 64;
+
+/// At most [`SAMPLED_TRIANGLES`] of `mesh`'s triangles, spread evenly over its list.
+fn sampled_triangles(mesh: &Mesh) -> impl Iterator<Item = &[u32; 3]> {
+    let step = mesh.triangles.len().div_ceil(SAMPLED_TRIANGLES).max(1);
+    mesh.triangles.iter().step_by(step)
+}
 
 /// Is a sampled triangle's first corner in front of a sampled face's plane by more than
 /// `margin` (m)? That proves the mesh not convex, whichever test would have decided:
@@ -131,11 +138,7 @@ const SAMPLED_FACES: usize = 64;
 /// local test would have found a fold somewhere (a margin of a thousand times the
 /// tolerance is no rounding of convex edges).
 fn corner_in_front(mesh: &Mesh, faces: &Faces, margin: f64) -> bool {
-    let step = mesh.triangles.len().div_ceil(SAMPLED_CORNERS).max(1);
-    let corners: Vec<DVec3> = mesh
-        .triangles
-        .iter()
-        .step_by(step)
+    let corners: Vec<DVec3> = sampled_triangles(mesh)
         .map(|t| mesh.vertices[t[0] as usize])
         .collect();
     let step = faces.len().div_ceil(SAMPLED_FACES).max(1);
@@ -145,12 +148,13 @@ fn corner_in_front(mesh: &Mesh, faces: &Faces, margin: f64) -> bool {
     })
 }
 
-/// Does the first triangle, with one of a sample of corners, span a tetrahedron that no
-/// slab of half-width `tol` (m) holds? Every vertex lies within `radius` (m) of some point, so a
-/// convex body inside such a slab has a volume of at most 2·tol·π·radius² (the slab's
-/// width times the disc its projection lies in): a tetrahedron larger than that (twice
-/// over, for rounding) proves that no plane lies within `tol` of every vertex, whichever
-/// plane [`is_planar`] would have tested. A degenerate first triangle proves nothing.
+/// Does the first triangle, with a corner of one of the sampled triangles, span a
+/// tetrahedron that no slab of half-width `tol` (m) holds? Every vertex lies within
+/// `radius` (m) of some point, so a convex body inside such a slab has a volume of at
+/// most 2·tol·π·radius² (the slab's width times the disc its projection lies in): a
+/// tetrahedron larger than that (twice over, for rounding) proves that no plane lies
+/// within `tol` of every vertex, whichever plane [`is_planar`] would have tested. A
+/// degenerate first triangle proves nothing.
 fn too_thick_for_a_slab(mesh: &Mesh, tol: f64, radius: f64) -> bool {
     let Some(first) = mesh.triangles.first() else {
         return false;
@@ -159,10 +163,7 @@ fn too_thick_for_a_slab(mesh: &Mesh, tol: f64, radius: f64) -> bool {
     // |(b − a) × (c − a) · (v − a)| is six times the tetrahedron's volume
     let twice_area = (b - a).cross(c - a);
     let bound = 6.0 * 2.0 * (2.0 * tol * std::f64::consts::PI * radius * radius);
-    let step = mesh.triangles.len().div_ceil(SAMPLED_CORNERS).max(1);
-    mesh.triangles
-        .iter()
-        .step_by(step)
+    sampled_triangles(mesh)
         .flatten()
         .any(|&i| twice_area.dot(mesh.vertices[i as usize] - a).abs() > bound)
 }

@@ -376,7 +376,7 @@ mod fixtures {
     pub fn of_faces(mesh: &Mesh, faces: &Faces) -> Built {
         let tri_face = faces.triangle_faces(mesh.triangles.len());
         let two_sided = vec![false; faces.len()];
-        let topo = Topology::build(mesh, faces, &tri_face, &two_sided, 1e-9);
+        let topo = Topology::build_within(mesh, faces, &tri_face, &two_sided, None, 1e-9, None);
         let polys = Polygons::build(mesh, faces, two_sided);
         let patches = Patches::build(&polys, &topo);
         Built {

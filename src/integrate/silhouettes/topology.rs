@@ -99,19 +99,9 @@ pub struct Topology {
 }
 
 impl Topology {
-    #[cfg(test)]
-    pub fn build(
-        mesh: &Mesh,
-        faces: &Faces,
-        tri_face: &[u32],
-        two_sided: &[bool],
-        tol: f64,
-    ) -> Topology {
-        Topology::build_within(mesh, faces, tri_face, two_sided, None, tol, None)
-    }
-
-    /// [`Topology::build`] with the contacts found only between triangles of one `group`
-    /// (per triangle) when given: what moves with each group of an articulated mesh.
+    /// The topology of `faces`: its edges, which faces meet across them, which pieces are
+    /// open, and the contacts, found only between triangles of one `group` (per triangle)
+    /// when given: what moves with each group of an articulated mesh.
     /// `faces` must then have been merged within the groups
     /// ([`Faces::build_within`]): no edge joins two groups. `grid`: the contact search's
     /// grid of the mesh at `tol` when built already ([`TriangleGrid`]).
@@ -527,7 +517,8 @@ mod tests {
     fn topology_of(mesh: &Mesh, two_sided: bool) -> Topology {
         let faces = Faces::build(mesh, true);
         let tri_face = faces.triangle_faces(mesh.triangles.len());
-        Topology::build(mesh, &faces, &tri_face, &vec![two_sided; faces.len()], 1e-9)
+        let two_sided = vec![two_sided; faces.len()];
+        Topology::build_within(mesh, &faces, &tri_face, &two_sided, None, 1e-9, None)
     }
 
     /// An L-shaped prism, 1 m high: its footprint (0,0) (2,0) (2,1) (1,1) (1,2) (0,2) turns

@@ -6,7 +6,8 @@
 use super::folds::Fold;
 use super::lines::{self, Across, Line, LineGrid};
 use super::patches::Facing;
-use super::{polygons, Silhouettes};
+use super::Silhouettes;
+use crate::geometry::polygon;
 use glam::{DVec2, DVec3};
 
 /// A patch's state along one direction.
@@ -99,7 +100,7 @@ pub(super) struct Near {
 /// Does the line through fold `f` (across d) pass through the box `lo`–`hi`?
 #[inline]
 fn line_meets_box(f: &Fold, lo: DVec2, hi: DVec2) -> bool {
-    polygons::line_meets_box(f.pa, f.pb, lo, hi)
+    polygon::line_meets_box(f.pa, f.pb, lo, hi)
 }
 
 /// A receiving face across d, bounded by its sphere: its box (m, widened by the

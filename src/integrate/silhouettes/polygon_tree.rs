@@ -10,7 +10,7 @@
 //! cell of known area ([`super::cells::Cells::wholes`]).
 
 use super::cells::area_centroid;
-use super::polygons::line_meets_box;
+use crate::geometry::polygon::line_meets_box;
 use glam::DVec2;
 
 /// Faces with more polygons than this get a tree.

@@ -215,16 +215,6 @@ pub fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     (b - a).perp_dot(c - a)
 }
 
-/// Does the line through `a` and `b` pass through the box `lo`–`hi` (touching counts)?
-/// Its corners lie on both sides of the line, or on it: the box's centre lies no farther
-/// from the line than the box reaches across it (one product across the line, not four).
-#[inline]
-pub fn line_meets_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
-    let n = (b - a).perp();
-    let (centre, half) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
-    n.dot(centre - a).abs() <= n.abs().dot(half)
-}
-
 /// Does segment a–b come within `tol` of convex polygon `c` (separating axes)? `ccw`:
 /// whether `c` turns counter-clockwise. Knowing the winding, an edge's axis needs only
 /// the edge's own corner: the polygon lies wholly on its inner side.

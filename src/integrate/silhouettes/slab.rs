@@ -2,7 +2,8 @@
 //! over a flat patch's box that pass beside or below all its faces are set aside before
 //! any face is read ([`super::Silhouettes::receivers`]).
 
-use super::polygons::{line_meets_box, Polygons};
+use super::polygons::Polygons;
+use crate::geometry::polygon::line_meets_box;
 use glam::{DVec2, DVec3};
 
 /// Thickest slab, as a share of its rectangle's larger half extent, whose bound is

@@ -1,7 +1,7 @@
 //! glint: photometric light curves of space objects.
 //!
-//! The physics (docs/physics.md) lives in [`radiometry`], [`brdf`], [`geometry`] and
-//! [`integrate`]; [`scene`] holds the request/response types and their validation;
+//! The physics (docs/physics.md) lives in [`radiometry`], [`brdf`], [`geometry`],
+//! [`light`] (what lights the object at an epoch) and [`integrate`]; [`scene`] holds the request/response types and their validation;
 //! [`report`] writes CSV and plots. The command line ([`cli`]) and the HTTP service
 //! ([`service`]) are thin doors onto the same [`simulate`].
 
@@ -10,6 +10,7 @@ pub mod cli;
 pub mod fit;
 pub mod geometry;
 pub mod integrate;
+pub mod light;
 pub mod orbit;
 pub mod radiometry;
 pub mod render;

@@ -9,11 +9,12 @@ use super::silhouettes::{PatchLight, Silhouettes};
 use super::visibility::{FaceSide, Uncertain};
 use super::{Occlusion, Prepared};
 use crate::brdf::earth_light::EarthLight;
-use crate::brdf::sun_disk::{EarthDisk, SunLight};
+use crate::brdf::sun_disk::SunLight;
 use crate::brdf::Frame;
 use crate::geometry::angle_between;
-use crate::radiometry::{earth, eclipse, magnitude, sun, EARTH_RADIUS_M};
-use crate::scene::{EarthshineModel, Epoch, EpochResult, Illumination, Material, Scene};
+use crate::light::EpochLight;
+use crate::radiometry::{magnitude, sun};
+use crate::scene::{Epoch, EpochResult, Illumination, Material, Scene};
 use glam::DVec3;
 
 /// What lights the prepared mesh in an evaluation: the materials and the illumination.
@@ -86,58 +87,6 @@ impl LitPatch {
     /// Whether the Sun and the earthshine reach it (the directions asked about it).
     fn lit_by(&self) -> (bool, bool) {
         (self.sun != DVec3::ZERO, self.earth != DVec3::ZERO)
-    }
-}
-
-/// The light arriving at the object at one epoch: the Sun (after any eclipse) and the
-/// earthshine beams. Shared by the light curve and the renderer, so both see one Sun.
-#[derive(Debug, Clone, Default)]
-pub struct EpochLight {
-    /// Direct solar band irradiance at the object after the eclipse, W/m².
-    pub sun_w_m2: f64,
-    /// Fraction of the solar disk hidden by the Earth (0..1).
-    pub eclipse: f64,
-    /// The Earth's disk while it hides part of the Sun's (penumbra, 0 < `eclipse` < 1):
-    /// a glint then reflects only the visible part of the disk.
-    pub penumbra: Option<EarthDisk>,
-    pub earthshine: earth::Earthshine,
-}
-
-impl EpochLight {
-    pub fn at(ill: &Illumination, epoch: &Epoch) -> EpochLight {
-        let l = epoch.sun;
-        let es_full = ill.sun_irradiance(epoch.sun_distance_m);
-        let (hidden, penumbra, earthshine) = match epoch.earth {
-            None => (0.0, None, earth::Earthshine::default()),
-            Some(e) => {
-                let d = e.length();
-                let e_dir = e / d;
-                let earth_radius = (EARTH_RADIUS_M / d).min(1.0).asin();
-                let hidden = eclipse::hidden_fraction(
-                    sun::angular_radius(epoch.sun_distance_m),
-                    earth_radius,
-                    angle_between(l, e_dir),
-                );
-                let penumbra = (hidden > 0.0 && hidden < 1.0).then_some(EarthDisk {
-                    dir: e_dir,
-                    radius: earth_radius,
-                });
-                // The Earth reflects the sunlight that reaches it, which no eclipse of the
-                // object changes.
-                let shine = match ill.earthshine {
-                    EarthshineModel::Off => earth::Earthshine::default(),
-                    EarthshineModel::Seed => earth::seed(e_dir, ill.earth_albedo, es_full),
-                    EarthshineModel::Sphere => earth::sphere(e, l, ill.earth_albedo, es_full),
-                };
-                (hidden, penumbra, shine)
-            }
-        };
-        EpochLight {
-            sun_w_m2: es_full * (1.0 - hidden),
-            eclipse: hidden,
-            penumbra,
-            earthshine,
-        }
     }
 }
 

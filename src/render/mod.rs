@@ -22,7 +22,7 @@ pub use camera::Camera;
 
 use crate::geometry::bvh::Occluder;
 use crate::geometry::Faces;
-use crate::integrate::eq12::EpochLight;
+use crate::light::EpochLight;
 use crate::radiometry::sun;
 use crate::scene::response::Thumbnail;
 use crate::scene::{Epoch, Exposure, Method, Scene, Thumbnails};

@@ -17,7 +17,7 @@ use crate::brdf::earth_light::EarthLight;
 use crate::brdf::{sun_disk, Frame};
 use crate::geometry::bvh::Occluder;
 use crate::geometry::Faces;
-use crate::integrate::eq12::EpochLight;
+use crate::light::EpochLight;
 use crate::scene::Material;
 use glam::DVec3;
 

@@ -5,6 +5,7 @@
 //! band irradiance multiplies a purely geometric sum. A wavelength-dependent n(λ), k(λ)
 //! would evaluate the face sum per spectral bin and weight by the bin's irradiance.
 
+use super::per_direction::Toward;
 use super::silhouettes::{PatchLight, Silhouettes};
 use super::visibility::{FaceSide, Uncertain};
 use super::{Occlusion, Prepared};
@@ -354,10 +355,10 @@ fn visible_sums(
             });
             let wanted = lit.iter().map(|lf| (lf.face, lf.sun > 0.0, lf.earth > 0.0));
             sil.want(silhouettes, wanted.chain(whole));
-            sil.prepare(silhouettes, 0, Some(dirs.view));
+            sil.prepare(silhouettes, Toward::View, Some(dirs.view));
             sil.drop_hidden(silhouettes);
-            sil.prepare(silhouettes, 1, dirs.sunlit());
-            sil.prepare(silhouettes, 2, dirs.earth);
+            sil.prepare(silhouettes, Toward::Sun, dirs.sunlit());
+            sil.prepare(silhouettes, Toward::Earth, dirs.earth);
             let mut rays = sil.group_rays(silhouettes);
             let face_areas = |scratch: &mut _, sums: &mut Sums, face: u32, sun, earth, area| {
                 let (a_sun, a_earth, n) =

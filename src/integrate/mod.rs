@@ -10,6 +10,7 @@ pub mod articulated;
 pub mod eq12;
 pub mod image;
 pub mod methods;
+pub mod per_direction;
 pub mod silhouettes;
 pub mod visibility;
 

@@ -8,6 +8,7 @@ use super::direction::{Direction, FaceState, PatchState};
 use super::polygon_tree::Visit;
 use super::polygons::orient;
 use super::{lines, Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
+use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::DVec2;
 
 /// Most lines (with contacts) a direction may cut a face by for its ray answers to be
@@ -166,30 +167,32 @@ impl Silhouettes<'_> {
     /// (nor about a patch left with no face to decide). Lines and counts of the faces
     /// still asked about do not change.
     pub fn drop_hidden(&self, scratch: &mut Scratch) {
-        let view = &scratch.dirs[0];
+        let view = &scratch.dirs.view;
+        let view_only = Toward::View.bit();
+        let lights = Toward::Sun.bit() | Toward::Earth.bit();
         if !view.used {
             return;
         }
         // a patch at a time: a clean one is seen or hidden whole
         for p in 0..self.patches.len() {
-            if scratch.patch_wanted[p] & 0b110 == 0 {
+            if scratch.patch_wanted[p] & lights == 0 {
                 continue;
             }
             let faces = self.patches.faces_of(p);
             if view.patch[p] == PatchState::Clean {
                 if view.patch_count[p] != 0 {
                     for &f in faces {
-                        scratch.wanted[f as usize] &= 1;
+                        scratch.wanted[f as usize] &= view_only;
                     }
-                    scratch.patch_wanted[p] &= 1;
+                    scratch.patch_wanted[p] &= view_only;
                 }
                 continue;
             }
             let mut bits = 0;
             for &f in faces {
                 let w = &mut scratch.wanted[f as usize];
-                if *w & 0b110 != 0 && self.status(view, f as usize) == Status::Dark {
-                    *w &= 1;
+                if *w & lights != 0 && self.status(view, f as usize) == Status::Dark {
+                    *w &= view_only;
                 }
                 bits |= *w;
             }
@@ -208,30 +211,34 @@ impl Silhouettes<'_> {
         sun: bool,
         earth: bool,
     ) -> (f64, f64, u64) {
-        let want = [true, sun, earth];
-        let status: [Status; 3] = std::array::from_fn(|k| {
+        let want = PerDirection {
+            view: true,
+            sun,
+            earth,
+        };
+        let status = PerDirection::from_fn(|k| {
             if !want[k] || !scratch.dirs[k].used {
                 Status::Clear
             } else {
                 self.status(&scratch.dirs[k], face)
             }
         });
-        if status[0] == Status::Dark {
+        if status.view == Status::Dark {
             return (0.0, 0.0, 0);
         }
-        if !status.iter().any(|&s| s.cuts()) {
-            let lit = |k: usize| {
+        if !status.iter().any(|s| s.cuts()) {
+            let lit = |k: Toward| {
                 if want[k] && status[k] == Status::Clear {
                     area
                 } else {
                     0.0
                 }
             };
-            return (lit(1), lit(2), 0);
+            return (lit(Toward::Sun), lit(Toward::Earth), 0);
         }
         let whole = self.cut_into_cells(scratch, face, &status);
         let (cells, dirs, memo) = (&scratch.cells, &scratch.dirs, &mut scratch.memo);
-        for k in 0..3 {
+        for k in Toward::ALL {
             if status[k] == Status::Rays {
                 memo[k].reset(
                     self.polys.convex[face],
@@ -256,16 +263,26 @@ impl Silhouettes<'_> {
         } else {
             (a_sun, a_earth) = self.sampled(face, &mut decide);
         }
-        let lit = |k: usize, a: f64| if want[k] { a } else { 0.0 };
-        (lit(1, a_sun), lit(2, a_earth), rays)
+        let lit = |k: Toward, a: f64| if want[k] { a } else { 0.0 };
+        (lit(Toward::Sun, a_sun), lit(Toward::Earth, a_earth), rays)
     }
 
     /// Cuts `face` into `scratch.cells` by the bounding lines of the directions that
     /// cut it (and by its contacts). False when it would take more than [`MAX_CELLS`]
     /// cells: the face is then to be sampled.
-    fn cut_into_cells(&self, scratch: &mut Scratch, face: usize, status: &[Status; 3]) -> bool {
+    fn cut_into_cells(
+        &self,
+        scratch: &mut Scratch,
+        face: usize,
+        status: &PerDirection<Status>,
+    ) -> bool {
         scratch.lines.clear();
-        for (dir, _) in scratch.dirs.iter().zip(status).filter(|(_, s)| s.cuts()) {
+        for (dir, _) in scratch
+            .dirs
+            .iter()
+            .zip(status.iter())
+            .filter(|(_, s)| s.cuts())
+        {
             scratch.lines.extend(
                 dir.lines_of(face)
                     .iter()
@@ -275,7 +292,7 @@ impl Silhouettes<'_> {
         }
         // and along every contact of the face, whatever its jump: where rays decide the
         // cells, each must lie on one side of every place another piece meets the face
-        if status.contains(&Status::Rays) {
+        if status.iter().any(|&s| s == Status::Rays) {
             push_new(&mut scratch.lines, self.contact_segments(face));
         }
         let cells = &mut scratch.cells;
@@ -348,15 +365,15 @@ impl Silhouettes<'_> {
     /// no answer for `q`'s region yet); counts the rays cast.
     fn decide(
         &self,
-        dirs: &[Direction; 3],
-        status: &[Status; 3],
+        dirs: &PerDirection<Direction>,
+        status: &PerDirection<Status>,
         face: usize,
         q: DVec2,
-        memo: &mut [RayMemo; 3],
+        memo: &mut PerDirection<RayMemo>,
         rays: &mut u64,
     ) -> (bool, bool) {
-        let mut open = [true; 3];
-        for k in 0..3 {
+        let mut open = PerDirection::splat(true);
+        for k in Toward::ALL {
             open[k] = match status[k] {
                 Status::Clear => true,
                 Status::Dark => false,
@@ -374,11 +391,12 @@ impl Silhouettes<'_> {
                         .blocked(&self.polys, &self.topo.open, x, d, face as u32, self.eps)
                 }),
             };
-            if k == 0 && !open[0] {
+            // the view first: a point unseen needs no light decided
+            if k == Toward::View && !open.view {
                 return (false, false);
             }
         }
-        (open[0] && open[1], open[0] && open[2])
+        (open.view && open.sun, open.view && open.earth)
     }
 
     /// The areas (m²) of `face` that `decide` finds (seen and sunlit, seen and earthlit)

@@ -69,6 +69,7 @@ mod slab;
 mod sums;
 mod topology;
 
+use super::per_direction::{PerDirection, Toward};
 use crate::geometry::{Faces, Mesh};
 use crate::scene::Scene;
 use cells::{Cells, Cutter};
@@ -115,16 +116,16 @@ pub struct Silhouettes<'a> {
 /// Per-thread buffers.
 #[derive(Default)]
 pub struct Scratch {
-    dirs: [Direction; 3],
-    /// Per face and per patch: which directions this epoch asks about (bit k: direction
-    /// k). Only these faces take shadows: a face the observer does not see, or that no
+    dirs: PerDirection<Direction>,
+    /// Per face and per patch: which directions this epoch asks about
+    /// ([`Toward::bit`]s). Only these faces take shadows: a face the observer does not see, or that no
     /// light reaches, needs no count along any direction.
     wanted: Vec<u8>,
     patch_wanted: Vec<u8>,
     cells: Cells,
     cutter: Cutter,
     /// Per direction: ray answers shared between a face's cells.
-    memo: [areas::RayMemo; 3],
+    memo: PerDirection<areas::RayMemo>,
     lines: Vec<(DVec2, DVec2)>,
 }
 
@@ -270,22 +271,25 @@ impl<'a> Silhouettes<'a> {
         scratch.patch_wanted.clear();
         scratch.patch_wanted.resize(self.patches.len(), 0);
         for (f, sun, earth) in faces {
-            let bits = 1 | (sun as u8) << 1 | (earth as u8) << 2;
+            let bits = Toward::View.bit()
+                | if sun { Toward::Sun.bit() } else { 0 }
+                | if earth { Toward::Earth.bit() } else { 0 };
             scratch.wanted[f as usize] = bits;
             scratch.patch_wanted[self.patches.of_face[f as usize] as usize] |= bits;
         }
     }
 
-    /// Brings `scratch`'s direction `k` (0 view, 1 Sun, 2 Earth) to `d` for this epoch,
-    /// for the faces [`Silhouettes::want`] named.
-    pub fn prepare(&self, scratch: &mut Scratch, k: usize, d: Option<DVec3>) {
-        let dir = &mut scratch.dirs[k];
+    /// Brings `scratch`'s direction `toward` to unit `d` (in the body frame) for this
+    /// epoch, for the faces [`Silhouettes::want`] named; `None`: not asked about this
+    /// epoch (the Sun in umbra, no earthshine).
+    pub fn prepare(&self, scratch: &mut Scratch, toward: Toward, d: Option<DVec3>) {
+        let dir = &mut scratch.dirs[toward];
         let Some(d) = d else {
             dir.used = false;
             return;
         };
         dir.used = true;
-        let bit = 1u8 << k;
+        let bit = toward.bit();
         let wanted = &scratch.wanted;
         // kept from the last epoch (a Sun fixed in the body frame) when every face asked
         // about now was asked about then

@@ -8,6 +8,7 @@ use super::direction::PatchState;
 use super::patches::{Facing, Patches};
 use super::{Scratch, Silhouettes};
 use crate::geometry::{Cone, Faces};
+use crate::integrate::per_direction::Toward;
 use glam::{DMat3, DVec3};
 
 /// A patch's material is not one.
@@ -142,7 +143,7 @@ impl Silhouettes<'_> {
         sun: bool,
         earth: bool,
     ) -> Option<(bool, bool)> {
-        let clear = |k: usize| -> Option<bool> {
+        let clear = |k: Toward| -> Option<bool> {
             let dir = &scratch.dirs[k];
             if !dir.used {
                 return Some(true);
@@ -152,11 +153,11 @@ impl Silhouettes<'_> {
                 _ => None,
             }
         };
-        if !clear(0)? {
+        if !clear(Toward::View)? {
             return Some((false, false));
         }
-        let sun = if sun { clear(1)? } else { false };
-        let earth = if earth { clear(2)? } else { false };
+        let sun = if sun { clear(Toward::Sun)? } else { false };
+        let earth = if earth { clear(Toward::Earth)? } else { false };
         Some((sun, earth))
     }
 }

@@ -5,11 +5,11 @@
 //! its lid), are left out.
 
 use super::caps::LidState;
-use super::direction::{PerDirection, Toward};
 use super::face::{FaceSide, PartShadow};
 use super::grid::{FaceGrid, Projection, Stamp, GRID_MIN_FACES};
 use super::proofs::{outline_clear, reaches, reaches_front, LARGE_BLOCKER};
 use super::{Cache, Visibility, NO_PART};
+use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::{DVec2, DVec3};
 
 impl Visibility {

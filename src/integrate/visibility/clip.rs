@@ -5,10 +5,10 @@
 
 use super::blockers::Blocker;
 use super::caps::LidState;
-use super::direction::{PerDirection, Toward};
 use super::parts::Silhouette;
 use super::{Cache, Visibility};
 use crate::geometry::polygon::{convex_hull, Region};
+use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::{DVec2, DVec3};
 
 /// Buffers for [`Visibility::exact_area`] ([`Cache::clip`]).

@@ -6,11 +6,11 @@
 use super::blockers::Blocker;
 use super::caps::{CapStates, LidState};
 use super::clip::{above_horizon, ShadowBuffers};
-use super::direction::{PerDirection, Toward};
 use super::face::{FaceGeom, FaceSide};
 use super::settle::Settled;
 use super::{face_directions, Cache, Uncertain, Visibility, VisibilityMode, NO_PART};
 use crate::geometry::polygon::twice_signed_area;
+use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::DVec3;
 
 impl Visibility {

@@ -53,12 +53,11 @@
 //! geometry ([`face`], asked about on one [`FaceSide`] at a time), the patches and which may block which, the convex parts with their
 //! shadows, planes and normal cones, the caps' trees. The tests check each step against
 //! f64 rays and against plain face-by-face clipping (`oracle`, test builds only). What a
-//! step holds or decides per direction (view, Sun, Earth) is a [`direction::PerDirection`].
+//! step holds or decides per direction (view, Sun, Earth) is a [`PerDirection`].
 
 mod blockers;
 mod caps;
 mod clip;
-mod direction;
 mod face;
 mod grid;
 mod lids;
@@ -73,11 +72,11 @@ mod settle;
 use crate::geometry::bvh::LazyOccluder;
 use crate::geometry::convex::{convex_parts, ConvexPart};
 use crate::geometry::Faces;
+use crate::integrate::per_direction::{PerDirection, Toward};
 use crate::scene::Scene;
 use blockers::{Blocker, SearchScratch};
 use caps::{CapStates, CapTree, LidState};
 use clip::ClipScratch;
-use direction::{PerDirection, Toward};
 pub use face::FaceSide;
 use face::{face_geoms, triangle_area, FaceGeom};
 use glam::DVec3;

@@ -1,10 +1,10 @@
 //! Adaptive ray sampling of a face's visible area, where exact clipping cannot decide.
 
 use super::blockers::Blocker;
-use super::direction::{PerDirection, Toward};
 use super::face::triangle_area;
 use super::proofs::reaches;
 use crate::geometry::bvh::LazyOccluder;
+use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::DVec3;
 
 /// Deepest refinement: leaves down to 2⁻¹⁶ of a triangle's size.

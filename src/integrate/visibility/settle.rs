@@ -5,11 +5,11 @@
 //! face's whole part first ([`Visibility::part_cover`]), then against the face.
 
 use super::clip::above_horizon;
-use super::direction::{PerDirection, Toward};
 use super::face::{FaceGeom, FaceSide};
 use super::parts::{self, Cover, PartCover, Silhouette};
 use super::proofs::reaches;
 use super::{Cache, Visibility, NO_PART};
+use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::{DVec2, DVec3};
 
 /// What the parts that may hide a face whole settle along one direction.

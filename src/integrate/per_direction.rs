@@ -1,11 +1,12 @@
 //! The three directions a face is asked about in an epoch — towards the observer, the Sun
-//! and the Earth — and a value for each ([`PerDirection`]).
+//! and the Earth ([`Toward`]) — and a value for each ([`PerDirection`]): what both
+//! visibility engines (`visibility`, `silhouettes`) hold and decide per direction.
 
 use std::ops::{Index, IndexMut};
 
 /// One of the directions a face is asked about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Toward {
+pub enum Toward {
     View,
     Sun,
     Earth,
@@ -13,22 +14,28 @@ pub(super) enum Toward {
 
 impl Toward {
     /// Every direction, in the order [`PerDirection`] holds and visits them.
-    pub(super) const ALL: [Toward; 3] = [Toward::View, Toward::Sun, Toward::Earth];
+    pub const ALL: [Toward; 3] = [Toward::View, Toward::Sun, Toward::Earth];
+
+    /// This direction's bit in a set of directions held as bits (view 1, Sun 2, Earth 4).
+    #[inline]
+    pub const fn bit(self) -> u8 {
+        1 << self as u8
+    }
 }
 
 /// A value per direction. Iteration and [`PerDirection::map`] visit view, Sun, Earth in
 /// that order (the order the steps were written for: the view first, since a face
 /// unseen needs nothing else).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub(super) struct PerDirection<T> {
-    pub(super) view: T,
-    pub(super) sun: T,
-    pub(super) earth: T,
+pub struct PerDirection<T> {
+    pub view: T,
+    pub sun: T,
+    pub earth: T,
 }
 
 impl<T> PerDirection<T> {
     /// The same value along every direction.
-    pub(super) fn splat(value: T) -> Self
+    pub fn splat(value: T) -> Self
     where
         T: Clone,
     {
@@ -40,7 +47,7 @@ impl<T> PerDirection<T> {
     }
 
     /// A value per direction from `f`, called for view, Sun, Earth in that order.
-    pub(super) fn from_fn(mut f: impl FnMut(Toward) -> T) -> Self {
+    pub fn from_fn(mut f: impl FnMut(Toward) -> T) -> Self {
         let view = f(Toward::View);
         let sun = f(Toward::Sun);
         let earth = f(Toward::Earth);
@@ -48,7 +55,7 @@ impl<T> PerDirection<T> {
     }
 
     /// `f` of each value, called for view, Sun, Earth in that order.
-    pub(super) fn map<U>(self, mut f: impl FnMut(T) -> U) -> PerDirection<U> {
+    pub fn map<U>(self, mut f: impl FnMut(T) -> U) -> PerDirection<U> {
         let view = f(self.view);
         let sun = f(self.sun);
         let earth = f(self.earth);
@@ -56,7 +63,7 @@ impl<T> PerDirection<T> {
     }
 
     /// A reference to each value.
-    pub(super) fn each_ref(&self) -> PerDirection<&T> {
+    pub fn each_ref(&self) -> PerDirection<&T> {
         PerDirection {
             view: &self.view,
             sun: &self.sun,
@@ -65,7 +72,7 @@ impl<T> PerDirection<T> {
     }
 
     /// A mutable reference to each value.
-    pub(super) fn each_mut(&mut self) -> PerDirection<&mut T> {
+    pub fn each_mut(&mut self) -> PerDirection<&mut T> {
         PerDirection {
             view: &mut self.view,
             sun: &mut self.sun,
@@ -74,7 +81,7 @@ impl<T> PerDirection<T> {
     }
 
     /// The values paired with `other`'s, direction by direction.
-    pub(super) fn zip<U>(self, other: PerDirection<U>) -> PerDirection<(T, U)> {
+    pub fn zip<U>(self, other: PerDirection<U>) -> PerDirection<(T, U)> {
         PerDirection {
             view: (self.view, other.view),
             sun: (self.sun, other.sun),
@@ -83,17 +90,17 @@ impl<T> PerDirection<T> {
     }
 
     /// The values, view first.
-    pub(super) fn iter(&self) -> std::array::IntoIter<&T, 3> {
+    pub fn iter(&self) -> std::array::IntoIter<&T, 3> {
         [&self.view, &self.sun, &self.earth].into_iter()
     }
 
     /// The values, view first.
-    pub(super) fn iter_mut(&mut self) -> std::array::IntoIter<&mut T, 3> {
+    pub fn iter_mut(&mut self) -> std::array::IntoIter<&mut T, 3> {
         [&mut self.view, &mut self.sun, &mut self.earth].into_iter()
     }
 
     /// Each direction with its value, view first.
-    pub(super) fn pairs(&self) -> impl Iterator<Item = (Toward, &T)> {
+    pub fn pairs(&self) -> impl Iterator<Item = (Toward, &T)> {
         Toward::ALL.into_iter().zip(self.iter())
     }
 }

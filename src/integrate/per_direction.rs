@@ -128,3 +128,43 @@ impl<T> IndexMut<Toward> for PerDirection<T> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_direction_has_its_own_field_and_bit_visited_view_first() {
+        let mut seen = Vec::new();
+        let mut values = PerDirection::from_fn(|k| {
+            seen.push(k);
+            k.bit()
+        });
+        // from_fn visits view, Sun, Earth in that order, as ALL lists them
+        assert_eq!(seen, Toward::ALL);
+        assert_eq!((values.view, values.sun, values.earth), (1, 2, 4));
+        // indexing by direction reads and writes that direction's field alone
+        values[Toward::Earth] = 9;
+        assert_eq!(
+            values,
+            PerDirection {
+                view: 1,
+                sun: 2,
+                earth: 9
+            }
+        );
+        let pairs: Vec<(Toward, u8)> = values.pairs().map(|(k, &v)| (k, v)).collect();
+        assert_eq!(
+            pairs,
+            [(Toward::View, 1), (Toward::Sun, 2), (Toward::Earth, 9)]
+        );
+        // the bits are a set: each direction's is distinct from the others' union
+        for k in Toward::ALL {
+            let others = Toward::ALL
+                .iter()
+                .filter(|&&o| o != k)
+                .fold(0, |m, o| m | o.bit());
+            assert_eq!(k.bit() & others, 0, "{k:?}");
+        }
+    }
+}

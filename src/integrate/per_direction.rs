@@ -7,8 +7,11 @@ use std::ops::{Index, IndexMut};
 /// One of the directions a face is asked about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Toward {
+    /// Towards the observer: a face is seen where no sheet lies above it this way.
     View,
+    /// Towards the Sun: sunlit where none does.
     Sun,
+    /// Towards the Earth (earthshine's shadows).
     Earth,
 }
 

@@ -168,11 +168,11 @@ impl Silhouettes<'_> {
     /// still asked about do not change.
     pub fn drop_hidden(&self, scratch: &mut Scratch) {
         let view = &scratch.dirs.view;
-        let view_only = Toward::View.bit();
-        let lights = Toward::Sun.bit() | Toward::Earth.bit();
         if !view.used {
             return;
         }
+        let view_only = Toward::View.bit();
+        let lights = Toward::Sun.bit() | Toward::Earth.bit();
         // a patch at a time: a clean one is seen or hidden whole
         for p in 0..self.patches.len() {
             if scratch.patch_wanted[p] & lights == 0 {

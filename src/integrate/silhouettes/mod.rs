@@ -117,9 +117,9 @@ pub struct Silhouettes<'a> {
 #[derive(Default)]
 pub struct Scratch {
     dirs: PerDirection<Direction>,
-    /// Per face and per patch: which directions this epoch asks about
-    /// ([`Toward::bit`]s). Only these faces take shadows: a face the observer does not see, or that no
-    /// light reaches, needs no count along any direction.
+    /// Per face and per patch: which directions this epoch asks about ([`Toward::bit`]s).
+    /// Only these faces take shadows: a face the observer does not see, or that no light
+    /// reaches, needs no count along any direction.
     wanted: Vec<u8>,
     patch_wanted: Vec<u8>,
     cells: Cells,

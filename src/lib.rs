@@ -2,8 +2,9 @@
 //!
 //! The physics (docs/physics.md) lives in [`radiometry`], [`brdf`], [`geometry`],
 //! [`light`] (what lights the object at an epoch) and [`integrate`]; [`scene`] holds the
-//! request/response types and their validation; [`report`] writes CSV and plots. The command line ([`cli`]) and the HTTP service
-//! ([`service`]) are thin doors onto the same [`simulate`].
+//! request/response types and their validation; [`report`] writes CSV and plots. The
+//! command line ([`cli`]) and the HTTP service ([`service`]) are thin doors onto the same
+//! [`simulate`].
 
 pub mod brdf;
 pub mod cli;

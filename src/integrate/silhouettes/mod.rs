@@ -209,7 +209,7 @@ impl<'a> Silhouettes<'a> {
                     || search.finish(),
                 )
             },
-            || Polygons::build(mesh, faces, two_sided.clone()),
+            || Polygons::build(mesh, faces, two_sided.clone(), eps),
         );
         let topo = topo.with_contacts(pairs.on_faces(mesh, &tri_face, eps));
         let (patches, rays) = rayon::join(
@@ -381,7 +381,7 @@ mod fixtures {
         let tri_face = faces.triangle_faces(mesh.triangles.len());
         let two_sided = vec![false; faces.len()];
         let topo = Topology::build_within(mesh, faces, &tri_face, &two_sided, None, 1e-9, None);
-        let polys = Polygons::build(mesh, faces, two_sided);
+        let polys = Polygons::build(mesh, faces, two_sided, 1e-9);
         let patches = Patches::build(&polys, &topo);
         Built {
             polys,

@@ -39,7 +39,10 @@ pub struct Polygons {
 }
 
 impl Polygons {
-    pub fn build(mesh: &Mesh, faces: &Faces, two_sided: Vec<bool>) -> Polygons {
+    /// The faces of `faces` as polygons; `eps` (m): how far a corner may lie from where
+    /// it should for rounding alone (a face whose outline's hull exceeds it by no more
+    /// than a strip that wide along the hull is convex).
+    pub fn build(mesh: &Mesh, faces: &Faces, two_sided: Vec<bool>, eps: f64) -> Polygons {
         let nf = faces.len();
         let mut p = Polygons {
             normal: Vec::with_capacity(nf),
@@ -84,7 +87,16 @@ impl Polygons {
             if f.triangles.len() > 1 {
                 crate::geometry::polygon::convex_hull(&pts, &mut order, &mut hull);
                 let (area, _) = super::cells::area_centroid(&hull);
-                convex = hull.len() >= 3 && (area - f.area).abs() <= 1e-9 * f.area;
+                // Rounded corners (an OBJ file's nine decimals) leave an outline's
+                // hull larger than the face by up to a strip of the rounding's width
+                // along it: more than 1e-9 of a finely meshed face's area, which then
+                // was not convex, and its rays went unshared (a cluster of boxes cast
+                // ~14k a epoch).
+                let perimeter: f64 = (0..hull.len())
+                    .map(|k| hull[k].distance(hull[(k + 1) % hull.len()]))
+                    .sum();
+                let slack = (1e-9 * f.area).max(eps * perimeter);
+                convex = hull.len() >= 3 && (area - f.area).abs() <= slack;
             }
             if convex && f.triangles.len() > 1 {
                 let s = p.corners.len() as u32;
@@ -305,5 +317,68 @@ mod tests {
             assert!(segment_meets(p(1.0, 1.0), p(1.0, 1.0), c, 0.0, ccw));
             assert!(!segment_meets(p(2.5, 1.0), p(2.5, 1.0), c, 0.4, ccw));
         }
+    }
+
+    #[test]
+    fn a_finely_meshed_square_written_to_nine_decimals_is_one_convex_polygon_and_an_l_is_not() {
+        // a 0.3 m square of 12 × 12 squares, turned off the axes, its corners rounded to
+        // nine decimals (an OBJ file's): its outline's hull exceeds the face by a strip
+        // of the rounding's width, more than 1e-9 of its area, less than eps along it
+        let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1);
+        let round = |x: f64| (x * 1e9).round() / 1e9;
+        let grid = |k: u32, keep: &dyn Fn(u32, u32) -> bool| {
+            let mut mesh = Mesh::default();
+            let at = |i: u32, j: u32| i * (k + 1) + j;
+            for i in 0..=k {
+                for j in 0..=k {
+                    let p = DVec3::new(0.3 * i as f64 / k as f64, 0.3 * j as f64 / k as f64, 0.0);
+                    mesh.vertices.push((turn * p).map(round));
+                }
+            }
+            for i in 0..k {
+                for j in 0..k {
+                    if keep(i, j) {
+                        mesh.triangles
+                            .push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                        mesh.triangles
+                            .push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+                    }
+                }
+            }
+            // and a triangle 3 m off: the mesh's size (what its faces merge and its
+            // rounding height are measured against) is an object's, not a panel's
+            let b = mesh.vertices.len() as u32;
+            for v in [
+                DVec3::new(3.0, 0.0, 0.0),
+                DVec3::new(3.1, 0.0, 0.0),
+                DVec3::new(3.0, 0.0, 0.1),
+            ] {
+                mesh.vertices.push(turn * v);
+            }
+            mesh.triangles.push([b, b + 1, b + 2]);
+            mesh.material_ids = vec![0; mesh.triangles.len()];
+            mesh
+        };
+        let square = grid(12, &|_, _| true);
+        // eps as the engine takes it: 1e-9 of the mesh's size
+        let eps = 1e-9 * square.bounding_sphere().1;
+        let faces = Faces::build(&square, true);
+        assert_eq!(faces.len(), 2);
+        let polys = Polygons::build(&square, &faces, vec![false; 2], eps);
+        assert!(polys.convex[0]);
+        assert_eq!(polys.of(0).len(), 1, "one polygon, its outline");
+        // without the rounding's slack it would not be (the test's reason to be)
+        let (area, hull_area) = (faces.faces[0].area, {
+            let k = polys.of(0).start;
+            super::super::cells::area_centroid(polys.corners2(k)).0
+        });
+        assert!((hull_area - area).abs() > 1e-9 * area, "{hull_area} {area}");
+        // an L (a quarter of the squares left out) keeps its notch: not convex
+        let l = grid(12, &|i, j| i < 6 || j < 6);
+        let faces = Faces::build(&l, true);
+        assert_eq!(faces.len(), 2);
+        let polys = Polygons::build(&l, &faces, vec![false; 2], eps);
+        assert!(!polys.convex[0]);
+        assert_eq!(polys.of(0).len(), l.triangles.len() - 1);
     }
 }

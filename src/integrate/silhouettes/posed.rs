@@ -44,7 +44,7 @@ impl Reference {
         let eps = eps_of(mesh);
         let topo =
             Topology::build_within(mesh, faces, &tri_face, &two_sided, Some(group), eps, None);
-        let polys = Polygons::build(mesh, faces, two_sided);
+        let polys = Polygons::build(mesh, faces, two_sided, eps);
         let patches = Patches::build(&polys, &topo);
         let group_of_face: Vec<u32> = faces
             .faces

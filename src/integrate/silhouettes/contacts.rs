@@ -928,49 +928,17 @@ mod tests {
         }
     }
 
-    /// A k × k grid of squares (two triangles each) spanning `origin` + [0, 1]·`u` +
-    /// [0, 1]·`v`, its normal along u × v, appended to `mesh`.
-    fn push_grid(mesh: &mut Mesh, k: u32, origin: DVec3, u: DVec3, v: DVec3) {
-        let base = mesh.vertices.len() as u32;
-        for i in 0..=k {
-            for j in 0..=k {
-                let (a, b) = (i as f64 / k as f64, j as f64 / k as f64);
-                mesh.vertices.push(origin + u * a + v * b);
-            }
-        }
-        let at = |i: u32, j: u32| base + i * (k + 1) + j;
-        for i in 0..k {
-            for j in 0..k {
-                mesh.triangles
-                    .push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                mesh.triangles
-                    .push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-            }
-        }
-        mesh.material_ids.resize(mesh.triangles.len(), 0);
-    }
-
     #[test]
     fn a_finely_meshed_wall_through_a_finely_meshed_plate_meets_it_along_one_segment() {
         // a 2 m plate and a 1.2 m × 1 m wall standing through it, 12 × 12 squares each
         // (the wall's line crosses a dozen of the plate's triangles and the plate's a
         // dozen of the wall's), turned off the axes and written to nine decimals, as an
         // OBJ file would hold them
+        use crate::geometry::builtin::push_grid_quad;
         let mut mesh = Mesh::default();
-        push_grid(
-            &mut mesh,
-            12,
-            DVec3::new(-1.0, -1.0, 0.0),
-            2.0 * DVec3::X,
-            2.0 * DVec3::Y,
-        );
-        push_grid(
-            &mut mesh,
-            12,
-            DVec3::new(-0.6, 0.1, -0.5),
-            1.2 * DVec3::X,
-            DVec3::Z,
-        );
+        let (plate, wall) = (DVec3::new(-1.0, -1.0, 0.0), DVec3::new(-0.6, 0.1, -0.5));
+        push_grid_quad(&mut mesh, plate, 2.0 * DVec3::X, 2.0 * DVec3::Y, 12, 12, 0);
+        push_grid_quad(&mut mesh, wall, 1.2 * DVec3::X, DVec3::Z, 12, 12, 0);
         let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1);
         let round = |x: f64| (x * 1e9).round() / 1e9;
         for v in &mut mesh.vertices {

@@ -326,24 +326,19 @@ mod tests {
         // of the rounding's width, more than 1e-9 of its area, less than eps along it
         let turn = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1);
         let round = |x: f64| (x * 1e9).round() / 1e9;
-        let grid = |k: u32, keep: &dyn Fn(u32, u32) -> bool| {
+        // quads of 0.025 m squares, from the origin along `size` (m), turned and rounded
+        let object = |quads: &[(DVec2, DVec2)]| {
             let mut mesh = Mesh::default();
-            let at = |i: u32, j: u32| i * (k + 1) + j;
-            for i in 0..=k {
-                for j in 0..=k {
-                    let p = DVec3::new(0.3 * i as f64 / k as f64, 0.3 * j as f64 / k as f64, 0.0);
-                    mesh.vertices.push((turn * p).map(round));
-                }
+            for &(at, size) in quads {
+                let (nu, nv) = (
+                    (size.x / 0.025).round() as u32,
+                    (size.y / 0.025).round() as u32,
+                );
+                let (o, u, v) = (at.extend(0.0), DVec3::X * size.x, DVec3::Y * size.y);
+                crate::geometry::builtin::push_grid_quad(&mut mesh, o, u, v, nu, nv, 0);
             }
-            for i in 0..k {
-                for j in 0..k {
-                    if keep(i, j) {
-                        mesh.triangles
-                            .push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-                        mesh.triangles
-                            .push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-                    }
-                }
+            for v in &mut mesh.vertices {
+                *v = (turn * *v).map(round);
             }
             // and a triangle 3 m off: the mesh's size (what its faces merge and its
             // rounding height are measured against) is an object's, not a panel's
@@ -359,7 +354,7 @@ mod tests {
             mesh.material_ids = vec![0; mesh.triangles.len()];
             mesh
         };
-        let square = grid(12, &|_, _| true);
+        let square = object(&[(DVec2::ZERO, DVec2::splat(0.3))]);
         // eps as the engine takes it: 1e-9 of the mesh's size
         let eps = 1e-9 * square.bounding_sphere().1;
         let faces = Faces::build(&square, true);
@@ -374,7 +369,11 @@ mod tests {
         });
         assert!((hull_area - area).abs() > 1e-9 * area, "{hull_area} {area}");
         // an L (a quarter of the squares left out) keeps its notch: not convex
-        let l = grid(12, &|i, j| i < 6 || j < 6);
+        let half = DVec2::new(0.15, 0.0);
+        let l = object(&[
+            (DVec2::ZERO, DVec2::new(0.15, 0.3)),
+            (half, DVec2::splat(0.15)),
+        ]);
         let faces = Faces::build(&l, true);
         assert_eq!(faces.len(), 2);
         let polys = Polygons::build(&l, &faces, vec![false; 2], eps);

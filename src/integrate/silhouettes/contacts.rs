@@ -627,7 +627,8 @@ fn join_pieces(
         // Of the other face, its corners highest above and lowest below the receiving
         // face's plane: the other face is flat, so its part on either side of that plane
         // lies on one side of the line, as any of its points there does
-        // ([`Contact::jump`] needs one on each side that has one).
+        // ([`Contact::jump`] needs one on each side that has one; on a side with none,
+        // a point of the plane stands in, which counts on neither).
         let height = |v: DVec3| n.dot(v - own[0]);
         let (mut top, mut bottom) = (own[0], own[0]);
         for c in group {

@@ -29,7 +29,7 @@ impl Silhouettes<'_> {
             match dir.patch[p] {
                 PatchState::Clean if dir.patch_count[p] == UNKNOWN => {
                     let f = self.patches.faces_of(p)[0] as usize;
-                    let (count, n) = self.seed_count(dir, f, self.polys.inside[f]);
+                    let (count, n) = self.whole_count(dir, f);
                     rays += n;
                     dir.patch_count[p] = count;
                     if count != DARK_ONLY {
@@ -81,14 +81,20 @@ impl Silhouettes<'_> {
         }
     }
 
-    /// The count at point `x` of face `f` by a ray (retried from nearby points when a
-    /// hit falls on a polygon's edge); [`DARK_ONLY`] when no count came out but the ray
-    /// was blocked. Returns the count and the rays cast.
-    fn seed_count(&self, dir: &Direction, f: usize, x: DVec3) -> (i32, u64) {
+    /// The count along `dir` at the first of `points` (in face `f`) from which a ray gives
+    /// one: a ray whose hit falls on a polygon's edge is retried from the next point.
+    /// [`DARK_ONLY`] when none did but the ray from the first was blocked. Returns the
+    /// count, the point it holds at and the rays cast; `None` for no point.
+    fn seed_count(
+        &self,
+        dir: &Direction,
+        f: usize,
+        points: impl Iterator<Item = DVec3>,
+    ) -> Option<(i32, DVec3, u64)> {
         let d = dir.across.d;
-        let points = self.seed_points(f, x);
-        let mut rays = 0;
+        let (mut rays, mut first) = (0, None);
         for x in points {
+            first.get_or_insert(x);
             rays += 1;
             if let Ok(n) = self.rays.count(
                 &self.polys,
@@ -99,22 +105,32 @@ impl Silhouettes<'_> {
                 self.eps,
                 self.eps,
             ) {
-                return (n as i32, rays);
+                return Some((n as i32, x, rays));
             }
         }
+        let x = first?;
         rays += 1;
         let blocked = self
             .rays
             .blocked(&self.polys, &self.topo.open, x, d, f as u32, self.eps);
-        (if blocked { DARK_ONLY } else { 0 }, rays)
+        Some((if blocked { DARK_ONLY } else { 0 }, x, rays))
     }
 
-    /// `x` and a few other points inside face `f`'s first polygon, to try in turn.
-    fn seed_points(&self, f: usize, x: DVec3) -> impl Iterator<Item = DVec3> + '_ {
+    /// A point inside face `f`'s first polygon and a few others there, to try in turn.
+    fn seed_points(&self, f: usize) -> impl Iterator<Item = DVec3> + '_ {
         let k = self.polys.of(f).start;
         let c = self.polys.corners3(k);
         let centre = c.iter().copied().sum::<DVec3>() / c.len() as f64;
-        std::iter::once(x).chain(c.iter().take(3).map(move |&v| centre + (v - centre) * 0.37))
+        std::iter::once(self.polys.inside[f])
+            .chain(c.iter().take(3).map(move |&v| centre + (v - centre) * 0.37))
+    }
+
+    /// The count of a face no line crosses, the same at each of its points.
+    fn whole_count(&self, dir: &Direction, f: usize) -> (i32, u64) {
+        let (count, _, n) = self
+            .seed_count(dir, f, self.seed_points(f))
+            .expect("a point");
+        (count, n)
     }
 
     /// A crossed or uncrossed face's count (and a crossed face's reference) by a ray;
@@ -122,26 +138,26 @@ impl Silhouettes<'_> {
     /// cell. Returns the rays cast.
     fn seed_face(&self, dir: &mut Direction, f: usize) -> u64 {
         if dir.face[f] == FaceState::Uncrossed {
-            let (count, n) = self.seed_count(dir, f, self.polys.inside[f]);
+            let (count, n) = self.whole_count(dir, f);
             dir.face_count[f] = count;
             return n;
         }
+        // only points clear of the lines: a count from a point across a line from the
+        // reference would carry that line's jump
         let lines = dir.lines_of(f);
         let margin = self.margin(f);
-        let at = self
-            .seed_points(f, self.polys.inside[f])
-            .map(|x| (x, self.polys.to2(f, x)))
-            .find(|&(_, q)| clearance(lines, q) > margin);
-        let Some((x, q)) = at else {
+        let clear = self
+            .seed_points(f)
+            .filter(|&x| clearance(lines, self.polys.to2(f, x)) > margin);
+        let Some((count, x, n)) = self.seed_count(dir, f, clear) else {
             dir.face[f] = FaceState::Rays;
             return 0;
         };
-        let (count, n) = self.seed_count(dir, f, x);
         if count == DARK_ONLY {
             dir.face[f] = FaceState::Rays;
         } else {
             dir.face_count[f] = count;
-            dir.face_ref[f] = q;
+            dir.face_ref[f] = self.polys.to2(f, x);
         }
         n
     }

@@ -47,6 +47,47 @@ pub struct Faces {
     pub edges: Vec<(u32, u32, u32)>,
 }
 
+/// How two triangles along an edge are tested for one plane ([`Faces::build_within`]).
+#[derive(Clone, Copy, PartialEq)]
+enum Join {
+    /// Within 1e-9 of the object's size, normals within [`SAME_NORMAL`].
+    Exact,
+    /// Within half the mesh's tolerance.
+    Rounded,
+    /// Within what the mesh's rounding may move the second's corners off the first's
+    /// plane, through the first's corners.
+    Lever,
+}
+
+/// Per triangle index, whether it roots a group of `parent` with a corner farther than
+/// `tol` (m) from the group's plane (its area-weighted normal through its centroid).
+fn bent_groups(mesh: &Mesh, parent: &mut [u32], tol: f64) -> Vec<bool> {
+    let n = parent.len();
+    let root: Vec<usize> = (0..n as u32).map(|t| find(parent, t) as usize).collect();
+    // per root: area vector, area-weighted sum of centroids, area
+    let mut sums = vec![(DVec3::ZERO, DVec3::ZERO, 0.0); n];
+    for (t, &r) in root.iter().enumerate() {
+        let av = mesh.area_vector(t);
+        let a = 0.5 * av.length();
+        let [p, q, c] = mesh.corners(t);
+        let s = &mut sums[r];
+        (s.0, s.1, s.2) = (s.0 + av, s.1 + a * (p + q + c) / 3.0, s.2 + a);
+    }
+    let mut bent = vec![false; n];
+    for (t, &r) in root.iter().enumerate() {
+        let (normal, moment, area) = sums[r];
+        let (normal, centroid) = (normal.normalize_or_zero(), moment / area);
+        if mesh
+            .corners(t)
+            .iter()
+            .any(|v| normal.dot(*v - centroid).abs() > tol)
+        {
+            bent[r] = true;
+        }
+    }
+    bent
+}
+
 /// Cosine above which two unit normals count as the same plane's.
 const SAME_NORMAL: f64 = 1.0 - 1e-9;
 
@@ -82,29 +123,85 @@ impl Faces {
     pub fn build_within(mesh: &Mesh, merge: bool, group: Option<&[u32]>) -> Faces {
         let n = mesh.triangles.len();
         let (_, scale) = mesh.bounding_sphere();
-        let plane_tol = 1e-9 * scale.max(1e-300);
+        // Within half the mesh's tolerance ([`Mesh::tolerance`]) where its rounding sets it.
+        let plane_tol = (1e-9 * scale).max(4.0 * mesh.rounding).max(1e-300);
+        let strict = 1e-9 * scale.max(1e-300);
         let normals: Vec<DVec3> = (0..n)
             .into_par_iter()
             .map(|i| mesh.area_vector(i).normalize())
             .collect();
+        // Two triangles along an edge merge when one material, facing one way, and the
+        // corners of the second lie on the first's plane: within 1e-9 of the object's
+        // size (`Join::Exact`), or for a rounded mesh within what its rounding may move
+        // them. Its normals then scatter by the rounding over a triangle's height (a
+        // sliver's by much more) and only say which way the triangles face.
+        let joins = |o: usize, t: usize, how: Join| {
+            let same = if how == Join::Exact { SAME_NORMAL } else { 0.0 };
+            if mesh.material_ids[o] != mesh.material_ids[t] || normals[o].dot(normals[t]) <= same {
+                return false;
+            }
+            let [a, b, c] = mesh.corners(o);
+            let area = (b - a).cross(c - a);
+            mesh.corners(t).iter().all(|&v| {
+                let height = normals[o].dot(v - a).abs();
+                match how {
+                    Join::Exact => height <= strict,
+                    Join::Rounded => height <= plane_tol,
+                    Join::Lever => {
+                        // The height at v of a plane through three corners each moved
+                        // by up to δ = √3·rounding moves by up to δ·Σ|λ| (λ: v's
+                        // barycentric coordinates in the triangle, large beyond a
+                        // sliver's long side), and v by δ.
+                        let w = |p: DVec3, q: DVec3| (q - p).cross(v - p).dot(area).abs();
+                        let lever = (w(b, c) + w(c, a) + w(a, b)) / area.length_squared();
+                        height <= strict + 3f64.sqrt() * mesh.rounding * (1.0 + lever)
+                    }
+                }
+            })
+        };
         let mut parent: Vec<u32> = (0..n as u32).collect();
         let (mut welded, mut edge_list) = (Vec::new(), Vec::new());
         if merge {
             // Weld vertices by exact position so meshes with split vertices still merge;
             // the triangles sharing an edge are side by side in `edges`.
             let (canon, edges) = mesh.welded_edges_within(group);
-            for shared in edges.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
-                let o = shared[0].2 as usize;
-                for &(_, _, t) in &shared[1..] {
-                    let t = t as usize;
-                    if mesh.material_ids[o] == mesh.material_ids[t]
-                        && normals[o].dot(normals[t]) > SAME_NORMAL
-                    {
-                        let p = mesh.vertices[mesh.triangles[o][0] as usize];
-                        let q = mesh.corners(t);
-                        if q.iter().all(|v| normals[o].dot(*v - p).abs() <= plane_tol) {
-                            union(&mut parent, o as u32, t as u32);
-                        }
+            let pairs = || {
+                edges
+                    .chunk_by(|x, y| (x.0, x.1) == (y.0, y.1))
+                    .flat_map(|shared| {
+                        let o = shared[0].2 as usize;
+                        shared[1..].iter().map(move |&(_, _, t)| (o, t as usize))
+                    })
+            };
+            let first = if mesh.rounding > 0.0 {
+                Join::Lever
+            } else {
+                Join::Exact
+            };
+            for (o, t) in pairs() {
+                if joins(o, t, first) {
+                    union(&mut parent, o as u32, t as u32);
+                }
+            }
+            // Pairs within the rounding may chain along a gently curved surface (the
+            // nearly flat fan at a dish's apex): a face whose corners stray from its own
+            // plane by more than half the tolerance is merged again by a stricter test.
+            let stricter = if mesh.rounding > 0.0 {
+                &[Join::Rounded, Join::Exact][..]
+            } else {
+                &[]
+            };
+            for &how in stricter {
+                let bent = bent_groups(mesh, &mut parent, plane_tol);
+                if !bent.iter().any(|&b| b) {
+                    break;
+                }
+                let root: Vec<u32> = (0..n as u32).map(|t| find(&mut parent, t)).collect();
+                parent = (0..n as u32).collect();
+                for (o, t) in pairs() {
+                    let (r, kept) = (root[o], !bent[root[o] as usize]);
+                    if r == root[t] && (kept || joins(o, t, how)) {
+                        union(&mut parent, o as u32, t as u32);
                     }
                 }
             }
@@ -259,4 +356,104 @@ pub fn tangent_of(normal: DVec3, axis: DVec3) -> DVec3 {
         axis
     };
     (a - normal * normal.dot(a)).normalize()
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::geometry::builtin::push_grid_quad;
+    use crate::geometry::mesh::decimal_rounding;
+    use glam::DQuat;
+
+    /// `mesh` turned off the axes and written to `decimals`, its rounding read from them.
+    fn written(mut mesh: Mesh, decimals: i32) -> Mesh {
+        let (turn, s) = (
+            DQuat::from_euler(glam::EulerRot::XYZ, 0.4, -0.9, 1.3),
+            10f64.powi(decimals),
+        );
+        for v in &mut mesh.vertices {
+            *v = (turn * *v + DVec3::new(0.3, -0.2, 0.1)).map(|x| (x * s).round() / s);
+        }
+        mesh.rounding = decimal_rounding(&mesh.vertices);
+        mesh
+    }
+
+    /// The shallow fan at a dish's apex (48 triangles, rising 0.005 a metre out to 1.7 cm)
+    /// and a ring of 48 quads beyond it (from 1.7 to 2.8 cm, rising 0.014): neighbours
+    /// differ by little more than 6-decimal rounding, the whole by 2.4e-4 m.
+    pub(crate) fn apex() -> Mesh {
+        let mut m = Mesh::default();
+        let at = |r: f64, k: u32| {
+            let a = k as f64 / 48.0 * std::f64::consts::TAU;
+            DVec3::new(r * a.cos(), r * a.sin(), r * r / 3.2)
+        };
+        m.vertices.push(DVec3::ZERO);
+        m.vertices.extend((0..48).map(|k| at(0.0167, k)));
+        m.vertices.extend((0..48).map(|k| at(0.0278, k)));
+        for k in 0..48u32 {
+            let (i, j) = (1 + k, 1 + (k + 1) % 48);
+            m.triangles.push([0, i, j]);
+            m.triangles.push([i, i + 48, j + 48]);
+            m.triangles.push([i, j + 48, j]);
+        }
+        m.material_ids = vec![0; m.triangles.len()];
+        m
+    }
+
+    #[test]
+    fn a_plate_written_to_six_decimals_is_one_face() {
+        // a 1.2 m square in 24 × 24 cells and a strip of 30 slivers 1 m by 5 mm beside it
+        let mut plate = Mesh::default();
+        push_grid_quad(
+            &mut plate,
+            DVec3::ZERO,
+            1.2 * DVec3::X,
+            1.2 * DVec3::Y,
+            24,
+            24,
+            0,
+        );
+        push_grid_quad(
+            &mut plate,
+            2.0 * DVec3::X,
+            DVec3::X,
+            0.15 * DVec3::Y,
+            1,
+            30,
+            0,
+        );
+        for decimals in [6, 7, 9] {
+            let m = written(plate.clone(), decimals);
+            let faces = Faces::build(&m, true);
+            assert_eq!(faces.len(), 2, "{decimals} decimals");
+            // its normal the true one's within the rounding over the plate's size
+            let n = DQuat::from_euler(glam::EulerRot::XYZ, 0.4, -0.9, 1.3) * DVec3::Z;
+            assert!(
+                faces.faces[0].normal.dot(n) > 1.0 - 1e-10,
+                "{decimals} decimals"
+            );
+        }
+        // read as exact, the 6-decimal plate falls apart: the corners stray by 1e-6 m
+        let mut exact = written(plate, 6);
+        exact.rounding = 0.0;
+        assert!(Faces::build(&exact, true).len() > 100);
+    }
+
+    #[test]
+    fn a_surface_flat_only_within_the_rounding_between_neighbours_stays_in_flat_faces() {
+        for decimals in [6, 9] {
+            let m = written(apex(), decimals);
+            let faces = Faces::build(&m, true);
+            // every face's corners within half the tolerance of its plane
+            for f in &faces.faces {
+                for &t in &f.triangles {
+                    for v in m.corners(t as usize) {
+                        let h = f.normal.dot(v - f.centroid).abs();
+                        assert!(h <= 0.5 * m.tolerance(), "{decimals}: {h:e}");
+                    }
+                }
+            }
+            assert!(faces.len() > 48, "{decimals}: {} faces", faces.len());
+        }
+    }
 }

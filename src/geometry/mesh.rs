@@ -14,6 +14,10 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
     /// Index into the scene's materials, one per triangle.
     pub material_ids: Vec<u32>,
+    /// How far the input's rounding may have moved a coordinate from its true value, m:
+    /// half the step of the decimals a file wrote them with ([`decimal_rounding`]), 0 for
+    /// coordinates made in f64. Rigid motions keep it.
+    pub rounding: f64,
 }
 
 impl Mesh {
@@ -96,6 +100,17 @@ impl Mesh {
         bounding_sphere(&self.vertices)
     }
 
+    /// Height (m) within which points count as one place in this mesh — rounding, not
+    /// geometry: 1e-9 of its size, or 8× its [`Mesh::rounding`] where that is more. A
+    /// corner rounded by r a coordinate lies within √3·r of its true plane, and a plane
+    /// fitted to rounded corners may tilt by as much again at a face's rim: faces merge
+    /// within half of this ([`super::faces::Faces::build`]), so their own corners stay
+    /// well within it of their planes.
+    pub fn tolerance(&self) -> f64 {
+        let (_, scale) = self.bounding_sphere();
+        (1e-9 * scale).max(8.0 * self.rounding)
+    }
+
     /// Total surface area, m².
     pub fn area(&self) -> f64 {
         (0..self.triangles.len())
@@ -111,7 +126,30 @@ impl Mesh {
             vertices: self.vertices.par_iter().map(|v| f(*v)).collect(),
             triangles: self.triangles.clone(),
             material_ids: self.material_ids.clone(),
+            rounding: self.rounding,
         }
+    }
+}
+
+/// Half the step of the decimals that `vertices` were written with, m, or 0 when they
+/// show none: 10⁻ᵏ/2 for the most decimals k that any coordinate carries, when that is 6
+/// to 9 (what exporters write). Coordinates of at most 5 decimals (a box at ±0.5 m:
+/// nothing was rounded off, or too little to matter), of more than 9 (made in f64), or
+/// reaching 1 km (where f64 cannot tell 9 decimals apart) read as exact.
+pub fn decimal_rounding(vertices: &[DVec3]) -> f64 {
+    let coords = || vertices.iter().flat_map(|v| v.to_array());
+    // within a thousandth of a step: a decimal read into f64 is off by ~1e-16 of itself
+    let multiple = |x: f64, k: i32| {
+        let y = x * 10f64.powi(k);
+        (y - y.round()).abs() <= 1e-3
+    };
+    if vertices.is_empty() || coords().any(|x| x.abs() >= 1e3 || !multiple(x, 9)) {
+        return 0.0;
+    }
+    match (5..9).find(|&k| coords().all(|x| multiple(x, k))) {
+        Some(5) => 0.0,
+        Some(k) => 0.5 * 10f64.powi(-k),
+        None => 0.5e-9,
     }
 }
 
@@ -360,5 +398,41 @@ mod tests {
             .filter(|w| (w[0].0, w[0].1) == (w[1].0, w[1].1))
             .count();
         assert_eq!(shared, 3 * ball.triangles.len() / 2 + 39);
+    }
+
+    #[test]
+    fn the_rounding_is_read_from_the_decimals_written() {
+        // points of a turned ball: every coordinate carries all its digits
+        let ball = crate::geometry::builtin::geodesic_sphere(3, 1.3);
+        let written = |k: i32| -> Vec<DVec3> {
+            let s = 10f64.powi(k);
+            ball.vertices.iter().map(|v| (*v * s).round() / s).collect()
+        };
+        assert_eq!(decimal_rounding(&ball.vertices), 0.0, "made in f64");
+        for k in 6..=9 {
+            assert_eq!(decimal_rounding(&written(k)), 0.5 * 10f64.powi(-k), "{k}");
+        }
+        // at most 5 decimals: too coarse to be a rounding of exporters', or nothing
+        // rounded off (a box at ±0.5 m)
+        assert_eq!(decimal_rounding(&written(5)), 0.0);
+        let cube: Vec<DVec3> = (0..8)
+            .map(|i| DVec3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2) as f64) - 0.5)
+            .collect();
+        assert_eq!(decimal_rounding(&cube), 0.0);
+        // one written corner is enough to show the decimals
+        let mut mixed = cube.clone();
+        mixed.push(DVec3::new(0.123457, 0.5, 0.5));
+        assert_eq!(decimal_rounding(&mixed), 0.5e-6);
+        // where f64 holds too few decimals to tell
+        let far: Vec<DVec3> = written(6).iter().map(|v| *v + 1e3).collect();
+        assert_eq!(decimal_rounding(&far), 0.0);
+        // the tolerance: 8× the rounding where that is more than 1e-9 of the size
+        let mut m = Mesh {
+            vertices: written(6),
+            ..Mesh::default()
+        };
+        assert_eq!(m.tolerance(), 1e-9 * m.bounding_sphere().1);
+        m.rounding = decimal_rounding(&m.vertices);
+        assert_eq!(m.tolerance(), 4e-6);
     }
 }

@@ -58,6 +58,7 @@ pub fn posed(scene: &Scene, a: &Articulation, angles: &[f64]) -> Scene {
         vertices: a.pose(&scene.mesh.vertices, angles),
         triangles: scene.mesh.triangles.clone(),
         material_ids: scene.mesh.material_ids.clone(),
+        rounding: scene.mesh.rounding,
     };
     let s = Scene {
         mesh,
@@ -175,8 +176,7 @@ fn never_convex(scene: &Scene, faces: &Faces, group_of_tri: &[u32], groups: usiz
         .faces
         .iter()
         .any(|f| scene.materials[f.material as usize].two_sided);
-    let (_, scale) = mesh.bounding_sphere();
-    let tol = 1e-9 * scale;
+    let tol = mesh.tolerance();
     (0..groups as u32).any(|g| {
         let of_group = |t: &usize| group_of_tri[*t] == g;
         let tris: Vec<usize> = (0..mesh.triangles.len()).filter(of_group).collect();
@@ -185,6 +185,7 @@ fn never_convex(scene: &Scene, faces: &Faces, group_of_tri: &[u32], groups: usiz
                 vertices: mesh.vertices.clone(),
                 triangles: tris.iter().map(|&t| mesh.triangles[t]).collect(),
                 material_ids: tris.iter().map(|&t| mesh.material_ids[t]).collect(),
+                rounding: mesh.rounding,
             };
             return !part.triangles.is_empty() && !convex::is_planar(&part);
         }

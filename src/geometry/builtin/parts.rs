@@ -79,6 +79,7 @@ pub fn subdivide(mesh: &Mesh, levels: u32) -> Mesh {
             vertices: out.vertices.clone(),
             triangles: Vec::with_capacity(out.triangles.len() * 4),
             material_ids: Vec::with_capacity(out.triangles.len() * 4),
+            rounding: out.rounding,
         };
         let mut midpoint = rustc_hash::FxHashMap::default();
         let mut mid = |a: u32, b: u32, v: &mut Vec<DVec3>| -> u32 {

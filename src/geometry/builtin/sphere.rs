@@ -69,6 +69,7 @@ pub fn icosphere(level: u32, r: f64) -> Mesh {
         vertices: vertices.into_iter().map(|v| v * r).collect(),
         triangles,
         material_ids: vec![0; n],
+        rounding: 0.0,
     }
 }
 

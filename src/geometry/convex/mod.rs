@@ -40,8 +40,7 @@ const CHEAP_EXACT: usize = 20_000_000;
 /// linear time; meshes failing every test are treated as non-convex, which only costs
 /// rays.
 pub fn is_convex(mesh: &Mesh, faces: &Faces) -> bool {
-    let (_, scale) = mesh.bounding_sphere();
-    let tol = 1e-9 * scale;
+    let tol = mesh.tolerance();
     // a corner far in front of a face proves it at once (the tests below read every
     // vertex against every face, or every edge on one thread: 1–3 ms at 200k triangles,
     // before the rest of the preparation can start)
@@ -99,7 +98,7 @@ fn locally_convex_and_closed(mesh: &Mesh, faces: &Faces, tol: f64) -> bool {
 /// shadow itself).
 pub fn is_planar(mesh: &Mesh) -> bool {
     let (_, scale) = mesh.bounding_sphere();
-    let tol = 1e-9 * scale;
+    let tol = mesh.tolerance();
     // the test below finds its plane from every triangle (a serial pass over ~200k of
     // them is ~2.5 ms, a tenth of a cubesat's preparation); a sample of corners proves
     // most meshes that are not planar so first, whatever plane the test would pick

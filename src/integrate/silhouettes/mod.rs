@@ -141,10 +141,9 @@ fn face_tables(scene: &Scene, faces: &Faces) -> (Vec<u32>, Vec<bool>) {
 }
 
 /// Height (m) above a face that counts as in front of it in `mesh`: rounding, not
-/// geometry.
+/// geometry ([`Mesh::tolerance`]).
 fn eps_of(mesh: &Mesh) -> f64 {
-    let (_, scale) = mesh.bounding_sphere();
-    1e-9 * scale
+    mesh.tolerance()
 }
 
 impl<'a> Silhouettes<'a> {

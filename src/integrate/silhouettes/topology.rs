@@ -498,6 +498,7 @@ mod tests {
             vertices,
             triangles: vec![[0, 1, 2], [0, 2, 3], [4, 5, 6]],
             material_ids: vec![0; 3],
+            rounding: 0.0,
         };
         let t = topology_of(&mesh, false);
         let faces = Faces::build(&mesh, true);
@@ -553,6 +554,7 @@ mod tests {
             vertices,
             triangles,
             material_ids: vec![0; n],
+            rounding: 0.0,
         }
     }
 

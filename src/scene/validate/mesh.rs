@@ -7,6 +7,7 @@
 
 use super::values::err;
 use super::{Limits, ValidationError};
+use crate::geometry::mesh::decimal_rounding;
 use crate::geometry::obj::Grouped;
 use crate::geometry::{builtin, obj, Mesh};
 use crate::scene::request::{MeshSpec, PartSpec};
@@ -179,6 +180,7 @@ fn inline_mesh(spec: &MeshSpec, n_materials: usize) -> Result<Mesh, ValidationEr
         vertices: Vec::with_capacity(vertices.len()),
         triangles: triangles.clone(),
         material_ids: Vec::new(),
+        rounding: 0.0,
     };
     for (i, v) in vertices.iter().enumerate() {
         let p = DVec3::from_array(*v);
@@ -216,6 +218,7 @@ fn inline_mesh(spec: &MeshSpec, n_materials: usize) -> Result<Mesh, ValidationEr
             ids.clone()
         }
     };
+    mesh.rounding = decimal_rounding(&mesh.vertices);
     Ok(mesh)
 }
 

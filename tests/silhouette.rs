@@ -422,7 +422,7 @@ fn boxes_through_one_another_written_to_six_decimals_merge_and_match_exact_clipp
 /// written to `decimals`: the silhouette method's and exact clipping's runs, after
 /// checking that each box side is one face.
 fn boxes_through_one_another(decimals: i32) -> (Response, Response) {
-    use glint::geometry::mesh::decimal_rounding;
+    use glint::geometry::mesh::written_rounding;
     use glint::geometry::{builtin::push_grid_box, Faces, Mesh};
     let boxes = [
         (
@@ -465,7 +465,7 @@ fn boxes_through_one_another(decimals: i32) -> (Response, Response) {
         }
     }
     // as the request's inline mesh (or an OBJ file) is read
-    mesh.rounding = decimal_rounding(&mesh.vertices);
+    mesh.rounding = written_rounding(&mesh.vertices);
     assert_eq!(mesh.rounding, 0.5 / step);
     assert_eq!(Faces::build(&mesh, true).len(), 30, "each side one face");
     let dir = |x: f64, y: f64, z: f64| DVec3::new(x, y, z).normalize();

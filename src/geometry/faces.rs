@@ -362,7 +362,7 @@ pub fn tangent_of(normal: DVec3, axis: DVec3) -> DVec3 {
 pub(crate) mod tests {
     use super::*;
     use crate::geometry::builtin::push_grid_quad;
-    use crate::geometry::mesh::decimal_rounding;
+    use crate::geometry::mesh::written_rounding;
     use glam::DQuat;
 
     /// `mesh` turned off the axes and written to `decimals`, its rounding read from them.
@@ -374,7 +374,7 @@ pub(crate) mod tests {
         for v in &mut mesh.vertices {
             *v = (turn * *v + DVec3::new(0.3, -0.2, 0.1)).map(|x| (x * s).round() / s);
         }
-        mesh.rounding = decimal_rounding(&mesh.vertices);
+        mesh.rounding = written_rounding(&mesh.vertices);
         mesh
     }
 
@@ -432,6 +432,16 @@ pub(crate) mod tests {
                 faces.faces[0].normal.dot(n) > 1.0 - 1e-10,
                 "{decimals} decimals"
             );
+        }
+        // and written to significant digits (`%g`): the largest coordinates' last digit
+        // rounds them most
+        for digits in [6, 8] {
+            let mut m = written(plate.clone(), 12);
+            for v in &mut m.vertices {
+                *v = v.map(|x| format!("{:.*e}", digits - 1, x).parse().expect("a number"));
+            }
+            m.rounding = written_rounding(&m.vertices);
+            assert_eq!(Faces::build(&m, true).len(), 2, "{digits} digits");
         }
         // read as exact, the 6-decimal plate falls apart: the corners stray by 1e-6 m
         let mut exact = written(plate, 6);

@@ -15,7 +15,7 @@ pub struct Mesh {
     /// Index into the scene's materials, one per triangle.
     pub material_ids: Vec<u32>,
     /// How far the input's rounding may have moved a coordinate from its true value, m:
-    /// half the step of the decimals a file wrote them with ([`decimal_rounding`]), 0 for
+    /// half a step of the last digit a file wrote them with ([`written_rounding`]), 0 for
     /// coordinates made in f64. Rigid motions keep it.
     pub rounding: f64,
 }
@@ -131,26 +131,77 @@ impl Mesh {
     }
 }
 
-/// Half the step of the decimals that `vertices` were written with, m, or 0 when they
-/// show none: 10⁻ᵏ/2 for the most decimals k that any coordinate carries, when that is 6
-/// to 9 (what exporters write). Coordinates of at most 5 decimals (a box at ±0.5 m:
-/// nothing was rounded off, or too little to matter), of more than 9 (made in f64), or
-/// reaching 1 km (where f64 cannot tell 9 decimals apart) read as exact.
-pub fn decimal_rounding(vertices: &[DVec3]) -> f64 {
+/// How far the digits that `vertices` were written with may have rounded a coordinate
+/// off its value, m, or 0 when they show no rounding. Two ways of writing are read,
+/// whichever shows the larger rounding: a fixed number of decimals (`%.6f`, what most OBJ
+/// exporters write: half a step of the most decimals any coordinate carries, 6 to 9) and
+/// a fixed number of significant digits (`%g`, C++ streams: half a step of the largest
+/// coordinate's last digit, for the most digits any coordinate carries, 6 to 9).
+/// Coordinates of more digits (made in f64), of fewer (a box at ±0.5 m: nothing was
+/// rounded off, or too little to tell), or beyond 1 km at fixed decimals (where f64
+/// cannot tell 9 decimals apart) read as exact.
+pub fn written_rounding(vertices: &[DVec3]) -> f64 {
+    // `%g` writes its small coordinates with more decimals than its large ones, whose
+    // last digit rounds by more; `%.9f` writes more digits than `%g` reads
+    decimal_rounding(vertices).max(significant_rounding(vertices))
+}
+
+/// Within a thousandth of a step, `x`·10ᵏ is a whole number: a decimal read into f64 is
+/// off by ~1e-16 of itself, well within that up to 10¹² steps.
+fn whole(x: f64, k: i32) -> bool {
+    let y = x * 10f64.powi(k);
+    (y - y.round()).abs() <= 1e-3
+}
+
+/// [`written_rounding`] for a fixed number of decimals.
+fn decimal_rounding(vertices: &[DVec3]) -> f64 {
     let coords = || vertices.iter().flat_map(|v| v.to_array());
-    // within a thousandth of a step: a decimal read into f64 is off by ~1e-16 of itself
-    let multiple = |x: f64, k: i32| {
-        let y = x * 10f64.powi(k);
-        (y - y.round()).abs() <= 1e-3
-    };
-    if vertices.is_empty() || coords().any(|x| x.abs() >= 1e3 || !multiple(x, 9)) {
+    if vertices.is_empty() || coords().any(|x| x.abs() >= 1e3 || !whole(x, 9)) {
         return 0.0;
     }
-    match (5..9).find(|&k| coords().all(|x| multiple(x, k))) {
+    match (5..9).find(|&k| coords().all(|x| whole(x, k))) {
         Some(5) => 0.0,
         Some(k) => 0.5 * 10f64.powi(-k),
         None => 0.5e-9,
     }
+}
+
+/// [`written_rounding`] for a fixed number of significant digits.
+fn significant_rounding(vertices: &[DVec3]) -> f64 {
+    // x > 0 is 10^e times a number in [1, 10)
+    let exponent = |x: f64| {
+        let e = x.log10().floor() as i32;
+        if 10f64.powi(e) > x {
+            e - 1
+        } else if 10f64.powi(e + 1) <= x {
+            e + 1
+        } else {
+            e
+        }
+    };
+    let (mut digits, mut largest) = (0, i32::MIN);
+    // below 1e-12 m a coordinate is zero written as noise, whatever its digits
+    for x in vertices
+        .iter()
+        .flat_map(|v| v.to_array())
+        .map(f64::abs)
+        .filter(|&x| x > 1e-12)
+    {
+        let e = exponent(x);
+        largest = largest.max(e);
+        // x to s digits is a whole number of 10^(e − s + 1)
+        if digits > 0 && whole(x, digits - 1 - e) {
+            continue;
+        }
+        match (digits + 1..=9).find(|&s| whole(x, s - 1 - e)) {
+            Some(s) => digits = s,
+            None => return 0.0,
+        }
+    }
+    if digits < 6 {
+        return 0.0;
+    }
+    0.5 * 10f64.powi(largest - digits + 1)
 }
 
 /// A sphere holding every point: centre (of their bounding box) and radius, m.
@@ -401,38 +452,70 @@ mod tests {
     }
 
     #[test]
-    fn the_rounding_is_read_from_the_decimals_written() {
+    fn the_rounding_is_read_from_the_digits_written() {
         // points of a turned ball: every coordinate carries all its digits
         let ball = crate::geometry::builtin::geodesic_sphere(3, 1.3);
         let written = |k: i32| -> Vec<DVec3> {
             let s = 10f64.powi(k);
             ball.vertices.iter().map(|v| (*v * s).round() / s).collect()
         };
-        assert_eq!(decimal_rounding(&ball.vertices), 0.0, "made in f64");
+        assert_eq!(written_rounding(&ball.vertices), 0.0, "made in f64");
         for k in 6..=9 {
-            assert_eq!(decimal_rounding(&written(k)), 0.5 * 10f64.powi(-k), "{k}");
+            assert_eq!(written_rounding(&written(k)), 0.5 * 10f64.powi(-k), "{k}");
         }
-        // at most 5 decimals: too coarse to be a rounding of exporters', or nothing
-        // rounded off (a box at ±0.5 m)
-        assert_eq!(decimal_rounding(&written(5)), 0.0);
+        // 5 decimals of coordinates up to 1.3 m are 6 significant digits
+        assert_eq!(written_rounding(&written(5)), 0.5e-5);
+        // significant digits (`%g`): half a step of the largest coordinate's last digit,
+        // on a ball of 1.3 m and one of 130 m
+        let digits = |r: f64, s: usize| -> Vec<DVec3> {
+            let d = |x: f64| {
+                format!("{:.*e}", s - 1, x)
+                    .parse::<f64>()
+                    .expect("a number")
+            };
+            ball.vertices
+                .iter()
+                .map(|v| (*v * r / 1.3).map(d))
+                .collect()
+        };
+        for s in 6..=9 {
+            let step = |e: i32| 0.5 * 10f64.powi(e - s as i32 + 1);
+            let (small, large) = (
+                written_rounding(&digits(1.3, s)),
+                written_rounding(&digits(130.0, s)),
+            );
+            assert!((small / step(0) - 1.0).abs() < 1e-12, "{s}: {small:e}");
+            assert!((large / step(2) - 1.0).abs() < 1e-12, "{s}: {large:e}");
+        }
+        assert_eq!(
+            written_rounding(&digits(1.3, 5)),
+            0.0,
+            "too few digits to tell"
+        );
+        assert_eq!(
+            written_rounding(&digits(1.3, 12)),
+            0.0,
+            "more than f32 holds"
+        );
+        // a box at ±0.5 m: nothing was rounded off
         let cube: Vec<DVec3> = (0..8)
             .map(|i| DVec3::new((i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2) as f64) - 0.5)
             .collect();
-        assert_eq!(decimal_rounding(&cube), 0.0);
+        assert_eq!(written_rounding(&cube), 0.0);
         // one written corner is enough to show the decimals
         let mut mixed = cube.clone();
         mixed.push(DVec3::new(0.123457, 0.5, 0.5));
-        assert_eq!(decimal_rounding(&mixed), 0.5e-6);
+        assert_eq!(written_rounding(&mixed), 0.5e-6);
         // where f64 holds too few decimals to tell
         let far: Vec<DVec3> = written(6).iter().map(|v| *v + 1e3).collect();
-        assert_eq!(decimal_rounding(&far), 0.0);
+        assert_eq!(written_rounding(&far), 0.0);
         // the tolerance: 8× the rounding where that is more than 1e-9 of the size
         let mut m = Mesh {
             vertices: written(6),
             ..Mesh::default()
         };
         assert_eq!(m.tolerance(), 1e-9 * m.bounding_sphere().1);
-        m.rounding = decimal_rounding(&m.vertices);
+        m.rounding = written_rounding(&m.vertices);
         assert_eq!(m.tolerance(), 4e-6);
     }
 }

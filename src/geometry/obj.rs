@@ -1,6 +1,6 @@
 //! Wavefront OBJ text → mesh, with materials matched by `usemtl` name.
 
-use super::mesh::{decimal_rounding, Mesh};
+use super::mesh::{written_rounding, Mesh};
 use glam::DVec3;
 
 /// Parses OBJ text (metres). Triangles take the index (in `material_names`) of their
@@ -101,7 +101,7 @@ pub fn parse_grouped(text: &str, material_names: &[&str]) -> Result<Grouped, Str
         return Err("OBJ text has no faces".into());
     }
     // most exporters write 6 decimals: coplanar triangles then merge within that
-    mesh.rounding = decimal_rounding(&mesh.vertices);
+    mesh.rounding = written_rounding(&mesh.vertices);
     Ok(Grouped {
         mesh,
         names,

@@ -1036,7 +1036,7 @@ mod tests {
         for v in &mut mesh.vertices {
             *v = v.map(|x| (x * 1e6).round() / 1e6);
         }
-        mesh.rounding = crate::geometry::mesh::decimal_rounding(&mesh.vertices);
+        mesh.rounding = crate::geometry::mesh::written_rounding(&mesh.vertices);
         let tri_face: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
         let welded = mesh.welded_ids();
         let pairs = contact_segments(&mesh, &welded, &tri_face, None, mesh.tolerance(), None);

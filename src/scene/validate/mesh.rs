@@ -7,7 +7,7 @@
 
 use super::values::err;
 use super::{Limits, ValidationError};
-use crate::geometry::mesh::decimal_rounding;
+use crate::geometry::mesh::written_rounding;
 use crate::geometry::obj::Grouped;
 use crate::geometry::{builtin, obj, Mesh};
 use crate::scene::request::{MeshSpec, PartSpec};
@@ -218,7 +218,7 @@ fn inline_mesh(spec: &MeshSpec, n_materials: usize) -> Result<Mesh, ValidationEr
             ids.clone()
         }
     };
-    mesh.rounding = decimal_rounding(&mesh.vertices);
+    mesh.rounding = written_rounding(&mesh.vertices);
     Ok(mesh)
 }
 

@@ -103,9 +103,9 @@ impl Mesh {
     /// Height (m) within which points count as one place in this mesh — rounding, not
     /// geometry: 1e-9 of its size, or 8× its [`Mesh::rounding`] where that is more. A
     /// corner rounded by r a coordinate lies within √3·r of its true plane, and a plane
-    /// fitted to rounded corners may tilt by as much again at a face's rim: faces merge
-    /// within half of this ([`super::faces::Faces::build`]), so their own corners stay
-    /// well within it of their planes.
+    /// fitted to rounded corners may tilt by as much again at a face's rim: merged faces
+    /// are kept flat within half of this ([`super::faces::Faces::build`]), so their own
+    /// corners stay well within it of their planes.
     pub fn tolerance(&self) -> f64 {
         let (_, scale) = self.bounding_sphere();
         (1e-9 * scale).max(8.0 * self.rounding)
@@ -453,7 +453,7 @@ mod tests {
 
     #[test]
     fn the_rounding_is_read_from_the_digits_written() {
-        // points of a turned ball: every coordinate carries all its digits
+        // points of a ball: every coordinate carries all its digits
         let ball = crate::geometry::builtin::geodesic_sphere(3, 1.3);
         let written = |k: i32| -> Vec<DVec3> {
             let s = 10f64.powi(k);
@@ -495,7 +495,7 @@ mod tests {
         assert_eq!(
             written_rounding(&digits(1.3, 12)),
             0.0,
-            "more than f32 holds"
+            "more digits than exporters write: made in f64"
         );
         // a box at ±0.5 m: nothing was rounded off
         let cube: Vec<DVec3> = (0..8)

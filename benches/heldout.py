@@ -2,7 +2,7 @@
 """Objects held out from the suite: shapes no code in glint was tuned to, written as OBJ
 files and tumbling requests, to check that speed holds beyond the suite's classes.
 
-    python3 benches/heldout.py [--out DIR] [--decimals N]
+    python3 benches/heldout.py [--out DIR] [--decimals N | --digits N]
 
 Writes DIR/NAME.obj and DIR/NAME.json (the OBJ text inline, sunlight alone) for
 - torus: a smooth ring that shades itself (R 1 m, r 0.38 m), 20,000 triangles;
@@ -12,7 +12,8 @@ Writes DIR/NAME.obj and DIR/NAME.json (the OBJ text inline, sunlight alone) for
   ends of one, 19,680 triangles;
 - cluster: 28 boxes of random size and attitude through one another (seeded), each
   side a grid of 8 x 8 squares, 21,504 triangles.
-Coordinates are written with N decimals (default 9; 6 is what most exporters write).
+Coordinates are written with N decimals (default 9; 6 is what most exporters write), or
+with N significant digits (`%g`, as C++ streams and assimp write them).
 The epochs tumble as the suite's do (`tumbling` in scenes/generate.py), in LEO.
 benches/heldout.sh runs glint and the peer on them.
 """
@@ -140,8 +141,8 @@ def cluster():
     return V, T
 
 
-def obj_text(V, T, decimals):
-    fmt = "v %.{0}f %.{0}f %.{0}f\n".format(decimals)
+def obj_text(V, T, decimals, digits=None):
+    fmt = "v %.{0}{1} %.{0}{1} %.{0}{1}\n".format(*((digits, "g") if digits else (decimals, "f")))
     return "".join(fmt % tuple(v) for v in V) + "usemtl surface\n" + "".join(
         "f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1) for t in T)
 
@@ -150,11 +151,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default="target/heldout")
     ap.add_argument("--decimals", type=int, default=9)
+    ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     for name, build in [("torus", torus), ("truss", truss), ("station", station), ("cluster", cluster)]:
         V, T = build()
-        text = obj_text(V, T, args.decimals)
+        text = obj_text(V, T, args.decimals, args.digits)
         with open(os.path.join(args.out, name + ".obj"), "w") as f:
             f.write(text)
         request = {

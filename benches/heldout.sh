@@ -5,8 +5,9 @@
 #   benches/heldout.sh          # from the repo root
 #
 # Settings (environment): DECIMALS (9: the OBJ coordinates' decimals; 6 is what most
-# exporters write), THREADS (2, both engines), PEER_EPOCHS (40), RES (256), SPP (16),
-# OUT (target/heldout), SKIP_PEER=1, SKIP_SETUP=1 (the peer's dependencies installed).
+# exporters write), DIGITS (significant digits instead, as `%g` writes them), THREADS (2,
+# both engines), PEER_EPOCHS (40), RES (256), SPP (16), OUT (target/heldout), SKIP_PEER=1,
+# SKIP_SETUP=1 (the peer's dependencies installed).
 # Prints per object: triangles, faces, glint ms an epoch (the simulate call, preparation
 # included), the peer's, and their ratio.
 set -euo pipefail
@@ -21,7 +22,7 @@ OUT=${OUT:-target/heldout}
 TARGET=${CARGO_TARGET_DIR:-target}
 
 cargo build --release --bin glint
-python3 benches/heldout.py --out "$OUT" --decimals "$DECIMALS"
+python3 benches/heldout.py --out "$OUT" --decimals "$DECIMALS" ${DIGITS:+--digits "$DIGITS"}
 names="torus truss station cluster"
 
 if [ -z "${SKIP_PEER:-}" ]; then

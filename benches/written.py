@@ -1,0 +1,49 @@
+#!/usr/bin/env python3
+"""The suite's classes as a user's exporter would hand them over: OBJ files whose coordinates
+are written with N decimals or N significant digits, each with the class's request.
+
+    glint export-objects --detail medium --dir DIR/objects
+    python3 benches/written.py DIR/objects --out DIR [--decimals N | --digits N]
+
+Writes DIR/CLASS.json for each class (box-wing, rocket-body, fragment, dish-sat, cubesat):
+scenes/CLASS.json with the OBJ text inline, coordinates re-written from the export's (9
+decimals) and sunlight alone, as the suite times it. Run them with `glint simulate`.
+"""
+import argparse, json, os
+
+CLASSES = ["box-wing", "rocket-body", "fragment", "dish-sat", "cubesat"]
+SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
+
+
+def rewritten(text, fmt):
+    out = []
+    for line in text.splitlines():
+        if line.startswith("v "):
+            line = "v " + " ".join(fmt % float(w) for w in line.split()[1:4])
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("objects", help="directory of `glint export-objects`")
+    ap.add_argument("--out", default="target/written")
+    ap.add_argument("--decimals", type=int, default=6)
+    ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
+    args = ap.parse_args()
+    fmt = "%%.%dg" % args.digits if args.digits else "%%.%df" % args.decimals
+    os.makedirs(args.out, exist_ok=True)
+    for c in CLASSES:
+        with open(os.path.join(args.objects, c + ".obj")) as f:
+            text = rewritten(f.read(), fmt)
+        with open(os.path.join(SCENES, c + ".json")) as f:
+            request = json.load(f)
+        request["object"]["mesh"] = {"obj": text}
+        request["illumination"]["earthshine"] = "off"
+        with open(os.path.join(args.out, c + ".json"), "w") as f:
+            json.dump(request, f)
+        print("wrote", os.path.join(args.out, c + ".json"))
+
+
+if __name__ == "__main__":
+    main()

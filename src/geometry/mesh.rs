@@ -107,7 +107,11 @@ impl Mesh {
     /// are kept flat within half of this ([`super::faces::Faces::build`]), so their own
     /// corners stay well within it of their planes.
     pub fn tolerance(&self) -> f64 {
-        let (_, scale) = self.bounding_sphere();
+        self.tolerance_at(self.bounding_sphere().1)
+    }
+
+    /// [`Mesh::tolerance`] for a mesh of bounding radius `scale` (m), known already.
+    pub fn tolerance_at(&self, scale: f64) -> f64 {
         (1e-9 * scale).max(8.0 * self.rounding)
     }
 

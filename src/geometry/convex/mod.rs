@@ -98,7 +98,7 @@ fn locally_convex_and_closed(mesh: &Mesh, faces: &Faces, tol: f64) -> bool {
 /// shadow itself).
 pub fn is_planar(mesh: &Mesh) -> bool {
     let (_, scale) = mesh.bounding_sphere();
-    let tol = mesh.tolerance();
+    let tol = mesh.tolerance_at(scale);
     // the test below finds its plane from every triangle (a serial pass over ~200k of
     // them is ~2.5 ms, a tenth of a cubesat's preparation); a sample of corners proves
     // most meshes that are not planar so first, whatever plane the test would pick

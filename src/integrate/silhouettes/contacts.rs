@@ -129,11 +129,7 @@ fn meeting_of(s: &Tri, t: &Tri, tol: f64) -> Option<(DVec3, DVec3)> {
                 .map(|&x| (x - at).length())
                 .fold(0.0f64, f64::max);
             let far = (p - at).length().max((q - at).length());
-            let (ns, nt) = (
-                (cs[1] - cs[0]).cross(cs[2] - cs[0]),
-                (ct[1] - ct[0]).cross(ct[2] - ct[0]),
-            );
-            let sin = ns.cross(nt).length() / (ns.length() * nt.length());
+            let sin = sin_between(cs, ct);
             let near = if sin > 0.0 { 2.0 * tol / sin } else { 0.0 };
             (far > 1e-3 * size && far > near).then_some((p, q))
         }
@@ -602,15 +598,7 @@ fn join_pieces(
         // nine decimals).
         let own = corner(group[0].own as usize);
         let n = (own[1] - own[0]).cross(own[2] - own[0]);
-        let theirs = corner(group[0].other as usize);
-        let sin = n
-            .normalize_or_zero()
-            .cross(
-                (theirs[1] - theirs[0])
-                    .cross(theirs[2] - theirs[0])
-                    .normalize_or_zero(),
-            )
-            .length();
+        let sin = sin_between(&own, &corner(group[0].other as usize));
         let reach = 8.0 * tol / sin;
         let off_line = |x: DVec3| (x - o - e * (x - o).dot(e)).length() > reach;
         if e == DVec3::ZERO
@@ -690,6 +678,21 @@ fn join_spans(
         .into_iter()
         .map(|(lo, hi)| (o + e * lo, o + e * hi))
         .collect()
+}
+
+/// The sine of the angle between the planes of triangles `s` and `t` (corners, m); 0
+/// for a degenerate one.
+fn sin_between(s: &[DVec3; 3], t: &[DVec3; 3]) -> f64 {
+    let (ns, nt) = (
+        (s[1] - s[0]).cross(s[2] - s[0]),
+        (t[1] - t[0]).cross(t[2] - t[0]),
+    );
+    let lengths = ns.length() * nt.length();
+    if lengths > 0.0 {
+        ns.cross(nt).length() / lengths
+    } else {
+        0.0
+    }
 }
 
 /// A contact along segment `seg` with a sheet of face `face` (`other`: points of it).

@@ -140,12 +140,6 @@ fn face_tables(scene: &Scene, faces: &Faces) -> (Vec<u32>, Vec<bool>) {
     (tri_face, two_sided)
 }
 
-/// Height (m) above a face that counts as in front of it in `mesh`: rounding, not
-/// geometry ([`Mesh::tolerance`]).
-fn eps_of(mesh: &Mesh) -> f64 {
-    mesh.tolerance()
-}
-
 impl<'a> Silhouettes<'a> {
     /// [`Silhouettes::build`] after renumbering `faces` in patch order
     /// (`patches::order_by_patches`): each direction then reads a patch's faces from one
@@ -166,7 +160,7 @@ impl<'a> Silhouettes<'a> {
     /// What the search for contacts needs of the mesh alone: it may be built while the
     /// faces merge, then handed to [`Silhouettes::build_ordered`].
     pub fn contact_grid(mesh: &Mesh) -> TriangleGrid {
-        TriangleGrid::build(mesh, eps_of(mesh))
+        TriangleGrid::build(mesh, mesh.tolerance())
     }
 
     pub fn build(scene: &'a Scene, faces: &Faces) -> Silhouettes<'a> {
@@ -181,7 +175,8 @@ impl<'a> Silhouettes<'a> {
         arrange: impl FnOnce(&mut Faces) + Send,
     ) -> Silhouettes<'a> {
         let mesh = &scene.mesh;
-        let eps = eps_of(mesh);
+        // the height above a face that counts as in front of it: rounding, not geometry
+        let eps = mesh.tolerance();
         // The contact search (a third of the work at ~200k triangles) reads only which
         // triangles share a face, not how the faces are numbered: the thread that would
         // wait while the other renumbers them starts it, and both finish it beside the

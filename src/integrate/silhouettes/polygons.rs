@@ -355,8 +355,8 @@ mod tests {
             mesh
         };
         let square = object(&[(DVec2::ZERO, DVec2::splat(0.3))]);
-        // eps as the engine takes it: 1e-9 of the mesh's size
-        let eps = 1e-9 * square.bounding_sphere().1;
+        // eps as the engine takes it: the mesh's tolerance, 1e-9 of its size here
+        let eps = square.tolerance();
         let faces = Faces::build(&square, true);
         assert_eq!(faces.len(), 2);
         let polys = Polygons::build(&square, &faces, vec![false; 2], eps);

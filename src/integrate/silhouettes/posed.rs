@@ -15,7 +15,7 @@ use super::patches::Patches;
 use super::polygons::Polygons;
 use super::rays::Rays;
 use super::topology::Topology;
-use super::{eps_of, face_tables, Silhouettes};
+use super::{face_tables, Silhouettes};
 use crate::geometry::articulation::Motion;
 use crate::geometry::{Faces, Mesh};
 use crate::scene::Scene;
@@ -41,7 +41,7 @@ impl Reference {
     pub fn build(scene: &Scene, faces: &Faces, group: &[u32], groups: usize) -> Reference {
         let mesh = &scene.mesh;
         let (tri_face, two_sided) = face_tables(scene, faces);
-        let eps = eps_of(mesh);
+        let eps = mesh.tolerance();
         let topo =
             Topology::build_within(mesh, faces, &tri_face, &two_sided, Some(group), eps, None);
         let polys = Polygons::build(mesh, faces, two_sided, eps);
@@ -71,7 +71,7 @@ impl Reference {
     /// groups may share a vertex in this pose.
     pub fn pose<'a>(&self, mesh: &'a Mesh, faces: &Faces, motions: &[Motion]) -> Silhouettes<'a> {
         let of_face = |f: usize| motions[self.group_of_face[f] as usize];
-        let eps = eps_of(mesh);
+        let eps = mesh.tolerance();
         let polys = self.polys.moved(of_face);
         let corners: Vec<[DVec3; 3]> = (0..mesh.triangles.len()).map(|t| mesh.corners(t)).collect();
         let across = self.across.contacts(&corners, &self.tri_face, eps);

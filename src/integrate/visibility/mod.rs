@@ -205,7 +205,7 @@ impl Visibility {
         let occluder = LazyOccluder::new(mesh);
         let corners: Vec<[DVec3; 3]> = (0..mesh.triangles.len()).map(|i| mesh.corners(i)).collect();
         let (_, scale) = mesh.bounding_sphere();
-        let tol = mesh.tolerance();
+        let tol = mesh.tolerance_at(scale);
         let nf = faces.len();
         let k = ((nf as f64).sqrt().round() as usize).clamp(1, 1024);
         let per_patch = nf.div_ceil(k);

@@ -383,7 +383,7 @@ fn a_count_ray_retried_on_a_rounded_fragment_keeps_to_its_side_of_the_lines() {
 /// against exact clipping.
 #[test]
 fn boxes_through_one_another_written_to_nine_decimals_match_exact_clipping() {
-    let (s, a) = boxes_through_one_another(9);
+    let (s, a) = boxes_through_one_another(Written::Decimals(9));
     let w = worst(&s, &a);
     assert!(
         w <= EXACT,
@@ -407,8 +407,8 @@ fn boxes_through_one_another_written_to_nine_decimals_match_exact_clipping() {
 /// Lambert face's light.
 #[test]
 fn boxes_through_one_another_written_to_six_decimals_merge_and_match_exact_clipping() {
-    let (s6, a6) = boxes_through_one_another(6);
-    let (s9, _) = boxes_through_one_another(9);
+    let (s6, a6) = boxes_through_one_another(Written::Decimals(6));
+    let (s9, _) = boxes_through_one_another(Written::Decimals(9));
     assert!(s6.summary.rays < 2_000, "{} rays", s6.summary.rays);
     let w = worst(&s6, &a6);
     assert!(
@@ -419,10 +419,40 @@ fn boxes_through_one_another_written_to_six_decimals_merge_and_match_exact_clipp
     assert!(w <= 1e-5, "six against nine decimals: {w:e} of the maximum");
 }
 
+/// The same boxes stored in single precision (a float32 array handed over as JSON numbers,
+/// each an f32 printed in full): the corners are off their sides' planes by up to an f32's
+/// step, 2.4e-7 m at the cluster's 2.8 m. Read as exact, the sides fall apart into their
+/// triangles; read as f32s, each side is one face, the tolerance is 8 steps (1.9e-6 m),
+/// and the bound on exact clipping is the six-decimal test's strip scaled to it:
+/// 1.9e-6 m × 11 /m = 2.1e-5 (5.9e-6 measured, with 963 rays). Against nine decimals, a
+/// side's normal turns by up to ~4e-6 rad (2.4e-7 m over 6 cm): within 1e-5 as at six
+/// decimals (1.2e-7 measured).
+#[test]
+fn boxes_through_one_another_stored_in_single_precision_merge_and_match_exact_clipping() {
+    let (s, a) = boxes_through_one_another(Written::Single);
+    let (s9, _) = boxes_through_one_another(Written::Decimals(9));
+    assert!(s.summary.rays < 2_000, "{} rays", s.summary.rays);
+    let w = worst(&s, &a);
+    assert!(
+        w <= 2.1e-5,
+        "silhouette vs adaptive differ by {w:e} of the maximum"
+    );
+    let w = worst(&s, &s9);
+    assert!(w <= 1e-5, "f32 against nine decimals: {w:e} of the maximum");
+}
+
+/// How [`boxes_through_one_another`] writes its coordinates.
+#[derive(Clone, Copy)]
+enum Written {
+    Decimals(i32),
+    /// Each coordinate the nearest f32, read back in full.
+    Single,
+}
+
 /// [`boxes_through_one_another_written_to_nine_decimals_match_exact_clipping`]'s boxes
-/// written to `decimals`: the silhouette method's and exact clipping's runs, after
+/// written as `written` says: the silhouette method's and exact clipping's runs, after
 /// checking that each box side is one face.
-fn boxes_through_one_another(decimals: i32) -> (Response, Response) {
+fn boxes_through_one_another(written: Written) -> (Response, Response) {
     use glint::geometry::mesh::written_rounding;
     use glint::geometry::{builtin::push_grid_box, Faces, Mesh};
     let boxes = [
@@ -454,8 +484,10 @@ fn boxes_through_one_another(decimals: i32) -> (Response, Response) {
             (0.1, 0.2, 0.3),
         ),
     ];
-    let step = 10f64.powi(decimals);
-    let round = |x: f64| (x * step).round() / step;
+    let round = |x: f64| match written {
+        Written::Decimals(k) => (x * 10f64.powi(k)).round() / 10f64.powi(k),
+        Written::Single => x as f32 as f64,
+    };
     let mut mesh = Mesh::default();
     for (centre, half, (a, b, c)) in boxes {
         let first = mesh.vertices.len();
@@ -467,7 +499,12 @@ fn boxes_through_one_another(decimals: i32) -> (Response, Response) {
     }
     // as the request's inline mesh (or an OBJ file) is read
     mesh.rounding = written_rounding(&mesh.vertices);
-    assert_eq!(mesh.rounding, 0.5 / step);
+    let rounding = match written {
+        Written::Decimals(k) => 0.5 * 10f64.powi(-k),
+        // one step of an f32 at the largest coordinate, 2.8 m: 2¹ ≤ 2.8 < 2²
+        Written::Single => 2f64.powi(1 - 23),
+    };
+    assert_eq!(mesh.rounding, rounding);
     assert_eq!(Faces::build(&mesh, true).len(), 30, "each side one face");
     let dir = |x: f64, y: f64, z: f64| DVec3::new(x, y, z).normalize();
     let sun = [

@@ -443,6 +443,22 @@ pub(crate) mod tests {
             m.rounding = written_rounding(&m.vertices);
             assert_eq!(Faces::build(&m, true).len(), 2, "{digits} digits");
         }
+        // and stored in single precision, printed in full or shortest
+        let in_full: fn(f32) -> f64 = |x| x as f64;
+        let shortest: fn(f32) -> f64 = |x| format!("{x}").parse().expect("a number");
+        for (how, print) in [("in full", in_full), ("shortest", shortest)] {
+            let mut m = written(plate.clone(), 12);
+            for v in &mut m.vertices {
+                *v = v.map(|x| print(x as f32));
+            }
+            m.rounding = written_rounding(&m.vertices);
+            assert_eq!(Faces::build(&m, true).len(), 2, "f32 {how}");
+            m.rounding = 0.0;
+            assert!(
+                Faces::build(&m, true).len() > 100,
+                "f32 {how}, read as exact"
+            );
+        }
         // read as exact, the 6-decimal plate falls apart: the corners stray by 1e-6 m
         let mut exact = written(plate, 6);
         exact.rounding = 0.0;

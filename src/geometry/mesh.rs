@@ -141,13 +141,54 @@ impl Mesh {
 /// exporters write: half a step of the most decimals any coordinate carries, 6 to 9) and
 /// a fixed number of significant digits (`%g`, C++ streams: half a step of the largest
 /// coordinate's last digit, for the most digits any coordinate carries, 6 to 9).
+/// Coordinates stored in single precision ([`single_rounding`]: a float32 array from
+/// VTK, a binary STL, a GPU pipeline) are read as rounded by one step of an f32 at the
+/// largest coordinate, whether printed in full or with the fewest digits that read back.
 /// Coordinates of more digits (made in f64), of fewer (a box at ±0.5 m: nothing was
 /// rounded off, or too little to tell), or beyond 1 km at fixed decimals (where f64
 /// cannot tell 9 decimals apart) read as exact.
 pub fn written_rounding(vertices: &[DVec3]) -> f64 {
     // `%g` writes its small coordinates with more decimals than its large ones, whose
     // last digit rounds by more; `%.9f` writes more digits than `%g` reads
-    decimal_rounding(vertices).max(significant_rounding(vertices))
+    let written = decimal_rounding(vertices).max(significant_rounding(vertices));
+    written.max(single_rounding(vertices, written > 0.0))
+}
+
+/// Coordinates looked at to tell whether short decimals are f32s printed shortest.
+const SHORTEST_SAMPLE: usize = 4096;
+
+/// [`written_rounding`] for coordinates that went through f32: one step of its 24-bit
+/// significand at the largest coordinate (an f32 rounds a coordinate by up to half a
+/// step, and the shortest decimal that reads back to it lies up to half a step further
+/// on), or 0 when they did not. Printed in full (`0.10000000149011612`, what
+/// `json.dumps(numpy.float32(x).tolist())` writes), every coordinate is an f32 read back
+/// exactly, and some are not short decimals (a box at ±0.5 m is an f32 too, but nothing
+/// was rounded off). Printed shortest (`0.1`, `str(numpy.float32(x))`), every
+/// coordinate looked at (up to [`SHORTEST_SAMPLE`], spread over the mesh) has as many
+/// digits as the shortest decimal of its f32; `decimals`: whether the digits showed
+/// rounding already (else too few to tell). Most coordinates written with 8 or 9
+/// digits from f64 have more digits than their f32 needs, so a sample of thousands
+/// does not mistake the one for the other.
+fn single_rounding(vertices: &[DVec3], decimals: bool) -> f64 {
+    let coords = || vertices.iter().flat_map(|v| v.to_array());
+    let in_full = || coords().all(|x| (x as f32) as f64 == x) && coords().any(|x| !whole(x, 9));
+    // as many digits as the f32's shortest decimal (writers break ties either way)
+    let shortest = || {
+        let step = (3 * vertices.len()).div_ceil(SHORTEST_SAMPLE).max(1);
+        coords()
+            .step_by(step)
+            .all(|x| digits_of(&format!("{x}")) == digits_of(&format!("{}", x as f32)))
+    };
+    if !(in_full() || decimals && shortest()) {
+        return 0.0;
+    }
+    let largest = coords().map(f64::abs).fold(0.0, f64::max);
+    if !largest.is_normal() {
+        return 0.0;
+    }
+    // the largest coordinate's binary exponent, read from its bits (no rounded log)
+    let exponent = ((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    2f64.powi(exponent - 23)
 }
 
 /// Within a thousandth of a step, `x`·10ᵏ is a whole number: a decimal read into f64 is
@@ -155,6 +196,12 @@ pub fn written_rounding(vertices: &[DVec3]) -> f64 {
 fn whole(x: f64, k: i32) -> bool {
     let y = x * 10f64.powi(k);
     (y - y.round()).abs() <= 1e-3
+}
+
+/// The significant digits of a number as Rust writes it (no exponent): `-0.0012500` → 3.
+fn digits_of(written: &str) -> usize {
+    let digits: String = written.chars().filter(char::is_ascii_digit).collect();
+    digits.trim_start_matches('0').trim_end_matches('0').len()
 }
 
 /// [`written_rounding`] for a fixed number of decimals.
@@ -513,6 +560,39 @@ mod tests {
         // where f64 holds too few decimals to tell
         let far: Vec<DVec3> = written(6).iter().map(|v| *v + 1e3).collect();
         assert_eq!(written_rounding(&far), 0.0);
+        // stored in single precision: one step of an f32 at the largest coordinate
+        // (the largest coordinate between 1 and 2 m, then between 128 and 256 m), printed
+        // in full or shortest
+        let single = |r: f64, print: fn(f32) -> f64| -> Vec<DVec3> {
+            ball.vertices
+                .iter()
+                .map(|v| (*v * r / 1.3).map(|x| print(x as f32)))
+                .collect()
+        };
+        let in_full: fn(f32) -> f64 = |x| x as f64;
+        let shortest: fn(f32) -> f64 = |x| format!("{x}").parse().expect("a number");
+        for (r, e) in [(1.3, 0), (200.0, 7)] {
+            assert_eq!(
+                written_rounding(&single(r, in_full)),
+                2f64.powi(e - 23),
+                "{r}"
+            );
+            assert_eq!(
+                written_rounding(&single(r, shortest)),
+                2f64.powi(e - 23),
+                "{r}"
+            );
+        }
+        // -1.39453125 lies halfway between two 8-digit decimals: Rust writes the one
+        // above, Python's `%.8g` the one below
+        let mut tie = single(1.3, shortest);
+        tie.push(DVec3::new(-1.3945312, 0.5, 0.5));
+        assert_eq!(written_rounding(&tie), 2f64.powi(-23));
+        // an f32 box at ±0.5 m (the cube above) was not rounded, and one coordinate of a
+        // ball made in f64 among f32s says that they are not all f32s
+        let mut one_f64 = single(1.3, in_full);
+        one_f64.push(ball.vertices[5]);
+        assert_eq!(written_rounding(&one_f64), 0.0);
         // the tolerance: 8× the rounding where that is more than 1e-9 of the size
         let mut m = Mesh {
             vertices: written(6),

@@ -2,7 +2,7 @@
 """Objects held out from the suite: shapes no code in glint was tuned to, written as OBJ
 files and tumbling requests, to check that speed holds beyond the suite's classes.
 
-    python3 benches/heldout.py [--out DIR] [--decimals N | --digits N]
+    python3 benches/heldout.py [--out DIR] [--decimals N | --digits N | --f32 full|shortest]
 
 Writes DIR/NAME.obj and DIR/NAME.json (the OBJ text inline, sunlight alone) for
 - torus: a smooth ring that shades itself (R 1 m, r 0.38 m), 20,000 triangles;
@@ -13,7 +13,8 @@ Writes DIR/NAME.obj and DIR/NAME.json (the OBJ text inline, sunlight alone) for
 - cluster: 28 boxes of random size and attitude through one another (seeded), each
   side a grid of 8 x 8 squares, 21,504 triangles.
 Coordinates are written with N decimals (default 9; 6 is what most exporters write), or
-with N significant digits (`%g`, as C++ streams and assimp write them).
+with N significant digits (`%g`, as C++ streams and assimp write them), or stored in single
+precision and printed in full or shortest (as benches/written.py's `--f32`).
 The epochs tumble as the suite's do (`tumbling` in scenes/generate.py), in LEO.
 benches/heldout.sh runs glint and the peer on them.
 """
@@ -21,6 +22,8 @@ import argparse, json, math, os, random, sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes"))
 from generate import tumbling  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from written import f32_full, f32_shortest  # noqa: E402
 
 MATERIAL = {"name": "surface", "model": "rough-conductor", "alpha": 0.3, "n": 1.4, "k": 7.5, "kd": 0.1}
 
@@ -141,9 +144,14 @@ def cluster():
     return V, T
 
 
-def obj_text(V, T, decimals, digits=None):
-    fmt = "v %.{0}{1} %.{0}{1} %.{0}{1}\n".format(*((digits, "g") if digits else (decimals, "f")))
-    return "".join(fmt % tuple(v) for v in V) + "usemtl surface\n" + "".join(
+def obj_text(V, T, decimals, digits=None, single=None):
+    if single:
+        write = f32_full if single == "full" else f32_shortest
+        vertices = "".join("v %s %s %s\n" % tuple(write(x) for x in v) for v in V)
+    else:
+        fmt = "v %.{0}{1} %.{0}{1} %.{0}{1}\n".format(*((digits, "g") if digits else (decimals, "f")))
+        vertices = "".join(fmt % tuple(v) for v in V)
+    return vertices + "usemtl surface\n" + "".join(
         "f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1) for t in T)
 
 
@@ -152,11 +160,13 @@ def main():
     ap.add_argument("--out", default="target/heldout")
     ap.add_argument("--decimals", type=int, default=9)
     ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
+    ap.add_argument("--f32", choices=["full", "shortest"],
+                    help="single precision instead, printed in full or shortest")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     for name, build in [("torus", torus), ("truss", truss), ("station", station), ("cluster", cluster)]:
         V, T = build()
-        text = obj_text(V, T, args.decimals, args.digits)
+        text = obj_text(V, T, args.decimals, args.digits, args.f32)
         with open(os.path.join(args.out, name + ".obj"), "w") as f:
             f.write(text)
         request = {

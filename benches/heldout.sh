@@ -5,7 +5,8 @@
 #   benches/heldout.sh          # from the repo root
 #
 # Settings (environment): DECIMALS (9: the OBJ coordinates' decimals; 6 is what most
-# exporters write), DIGITS (significant digits instead, as `%g` writes them), THREADS (2,
+# exporters write), DIGITS (significant digits instead, as `%g` writes them), F32 (`full` or
+# `shortest`: single precision instead, printed in full or shortest), THREADS (2,
 # both engines), PEER_EPOCHS (40), RES (256), SPP (16), OUT (target/heldout), SKIP_PEER=1,
 # SKIP_SETUP=1 (the peer's dependencies installed).
 # Prints per object: triangles, faces, glint ms an epoch (the simulate call, preparation
@@ -22,7 +23,8 @@ OUT=${OUT:-target/heldout}
 TARGET=${CARGO_TARGET_DIR:-target}
 
 cargo build --release --bin glint
-python3 benches/heldout.py --out "$OUT" --decimals "$DECIMALS" ${DIGITS:+--digits "$DIGITS"}
+python3 benches/heldout.py --out "$OUT" --decimals "$DECIMALS" ${DIGITS:+--digits "$DIGITS"} \
+    ${F32:+--f32 "$F32"}
 names="torus truss station cluster"
 
 if [ -z "${SKIP_PEER:-}" ]; then

@@ -1,25 +1,50 @@
 #!/usr/bin/env python3
 """The suite's classes as a user's exporter would hand them over: OBJ files whose coordinates
-are written with N decimals or N significant digits, each with the class's request.
+are written with N decimals or N significant digits, or stored in single precision, each with
+the class's request.
 
     glint export-objects --detail medium --dir DIR/objects
-    python3 benches/written.py DIR/objects --out DIR [--decimals N | --digits N]
+    python3 benches/written.py DIR/objects --out DIR [--decimals N | --digits N | --f32 HOW]
+
+`--f32 full` writes each coordinate rounded to the nearest f32 and printed in full, as
+`json.dumps(numpy.float32(x).tolist())` does (a float32 array from VTK, PyVista or a binary
+STL, handed over as Python floats); `--f32 shortest` prints that f32 with the fewest digits
+that read back to it, as `str(numpy.float32(x))` and most f32 writers do.
 
 Writes DIR/CLASS.json for each class (box-wing, rocket-body, fragment, dish-sat, cubesat):
 scenes/CLASS.json with the OBJ text inline, coordinates re-written from the export's (9
 decimals) and sunlight alone, as the suite times it. Run them with `glint simulate`.
 """
-import argparse, json, os
+import argparse, json, os, struct
 
 CLASSES = ["box-wing", "rocket-body", "fragment", "dish-sat", "cubesat"]
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
 
 
+def to_f32(x):
+    """x rounded to the nearest single-precision float, as a Python float (exact)."""
+    return struct.unpack("f", struct.pack("f", x))[0]
+
+
+def f32_full(x):
+    return repr(to_f32(x))
+
+
+def f32_shortest(x):
+    f = to_f32(x)
+    for p in range(1, 10):
+        s = "%.*g" % (p, f)
+        if to_f32(float(s)) == f:
+            return s
+    return repr(f)
+
+
 def rewritten(text, fmt):
+    write = fmt if callable(fmt) else (lambda x: fmt % x)
     out = []
     for line in text.splitlines():
         if line.startswith("v "):
-            line = "v " + " ".join(fmt % float(w) for w in line.split()[1:4])
+            line = "v " + " ".join(write(float(w)) for w in line.split()[1:4])
         out.append(line)
     return "\n".join(out) + "\n"
 
@@ -30,8 +55,13 @@ def main():
     ap.add_argument("--out", default="target/written")
     ap.add_argument("--decimals", type=int, default=6)
     ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
+    ap.add_argument("--f32", choices=["full", "shortest"],
+                    help="single precision instead, printed in full or shortest")
     args = ap.parse_args()
-    fmt = "%%.%dg" % args.digits if args.digits else "%%.%df" % args.decimals
+    if args.f32:
+        fmt = f32_full if args.f32 == "full" else f32_shortest
+    else:
+        fmt = "%%.%dg" % args.digits if args.digits else "%%.%df" % args.decimals
     os.makedirs(args.out, exist_ok=True)
     for c in CLASSES:
         with open(os.path.join(args.objects, c + ".obj")) as f:

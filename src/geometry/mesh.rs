@@ -584,11 +584,12 @@ mod tests {
             );
         }
         // -1.39453125 lies halfway between two 8-digit decimals: Rust writes the one
-        // above, Python's `%.8g` the one below
+        // above, Python's `%.8g` the one below (every coordinate of so few is looked at)
         let mut tie = single(1.3, shortest);
         tie.push(DVec3::new(-1.3945312, 0.5, 0.5));
+        assert!(3 * tie.len() <= SHORTEST_SAMPLE);
         assert_eq!(written_rounding(&tie), 2f64.powi(-23));
-        // an f32 box at ±0.5 m (the cube above) was not rounded, and one coordinate of a
+        // (the cube above is an f32 box too, and was not rounded) one coordinate of a
         // ball made in f64 among f32s says that they are not all f32s
         let mut one_f64 = single(1.3, in_full);
         one_f64.push(ball.vertices[5]);

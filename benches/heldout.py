@@ -2,7 +2,7 @@
 """Objects held out from the suite: shapes no code in glint was tuned to, written as OBJ
 files and tumbling requests, to check that speed holds beyond the suite's classes.
 
-    python3 benches/heldout.py [--out DIR] [--decimals N | --digits N | --f32 full|shortest]
+    python3 benches/heldout.py [--out DIR] [--decimals N | --digits N | --f32 full|shortest|nine]
 
 Writes DIR/NAME.obj and DIR/NAME.json (the OBJ text inline, sunlight alone) for
 - torus: a smooth ring that shades itself (R 1 m, r 0.38 m), 20,000 triangles;
@@ -14,7 +14,7 @@ Writes DIR/NAME.obj and DIR/NAME.json (the OBJ text inline, sunlight alone) for
   side a grid of 8 x 8 squares, 21,504 triangles.
 Coordinates are written with N decimals (default 9; 6 is what most exporters write), or
 with N significant digits (`%g`, as C++ streams and assimp write them), or stored in single
-precision and printed in full or shortest (as benches/written.py's `--f32`).
+precision and printed in full, shortest or to 9 digits (as benches/written.py's `--f32`).
 The epochs tumble as the suite's do (`tumbling` in scenes/generate.py), in LEO.
 benches/heldout.sh runs glint and the peer on them.
 """
@@ -23,7 +23,7 @@ import argparse, json, math, os, random, sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes"))
 from generate import tumbling  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from written import f32_full, f32_shortest  # noqa: E402
+from written import f32_full, f32_nine, f32_shortest  # noqa: E402
 
 MATERIAL = {"name": "surface", "model": "rough-conductor", "alpha": 0.3, "n": 1.4, "k": 7.5, "kd": 0.1}
 
@@ -146,7 +146,7 @@ def cluster():
 
 def obj_text(V, T, decimals, digits=None, single=None):
     if single:
-        write = f32_full if single == "full" else f32_shortest
+        write = {"full": f32_full, "shortest": f32_shortest, "nine": f32_nine}[single]
         vertices = "".join("v %s %s %s\n" % tuple(write(x) for x in v) for v in V)
     else:
         fmt = "v %.{0}{1} %.{0}{1} %.{0}{1}\n".format(*((digits, "g") if digits else (decimals, "f")))
@@ -160,8 +160,8 @@ def main():
     ap.add_argument("--out", default="target/heldout")
     ap.add_argument("--decimals", type=int, default=9)
     ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
-    ap.add_argument("--f32", choices=["full", "shortest"],
-                    help="single precision instead, printed in full or shortest")
+    ap.add_argument("--f32", choices=["full", "shortest", "nine"],
+                    help="single precision instead, printed in full, shortest or to 9 digits")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     for name, build in [("torus", torus), ("truss", truss), ("station", station), ("cluster", cluster)]:

@@ -5,8 +5,8 @@
 #   benches/heldout.sh          # from the repo root
 #
 # Settings (environment): DECIMALS (9: the OBJ coordinates' decimals; 6 is what most
-# exporters write), DIGITS (significant digits instead, as `%g` writes them), F32 (`full` or
-# `shortest`: single precision instead, printed in full or shortest), THREADS (2,
+# exporters write), DIGITS (significant digits instead, as `%g` writes them), F32 (`full`,
+# `shortest` or `nine`: single precision instead, printed in full, shortest or to 9 digits), THREADS (2,
 # both engines), PEER_EPOCHS (40), RES (256), SPP (16), OUT (target/heldout), SKIP_PEER=1,
 # SKIP_SETUP=1 (the peer's dependencies installed).
 # Prints per object: triangles, faces, glint ms an epoch (the simulate call, preparation

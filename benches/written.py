@@ -9,7 +9,8 @@ the class's request.
 `--f32 full` writes each coordinate rounded to the nearest f32 and printed in full, as
 `json.dumps(numpy.float32(x).tolist())` does (a float32 array from VTK, PyVista or a binary
 STL, handed over as Python floats); `--f32 shortest` prints that f32 with the fewest digits
-that read back to it, as `str(numpy.float32(x))` and most f32 writers do.
+that read back to it, as `str(numpy.float32(x))` and most f32 writers do; `--f32 nine` with 9
+significant digits (`%.9g`), as C++ streams at `max_digits10` and assimp's OBJ export do.
 
 Writes DIR/CLASS.json for each class (box-wing, rocket-body, fragment, dish-sat, cubesat):
 scenes/CLASS.json with the OBJ text inline, coordinates re-written from the export's (9
@@ -28,6 +29,10 @@ def to_f32(x):
 
 def f32_full(x):
     return repr(to_f32(x))
+
+
+def f32_nine(x):
+    return "%.9g" % to_f32(x)
 
 
 def f32_shortest(x):
@@ -55,11 +60,11 @@ def main():
     ap.add_argument("--out", default="target/written")
     ap.add_argument("--decimals", type=int, default=6)
     ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
-    ap.add_argument("--f32", choices=["full", "shortest"],
-                    help="single precision instead, printed in full or shortest")
+    ap.add_argument("--f32", choices=["full", "shortest", "nine"],
+                    help="single precision instead, printed in full, shortest or to 9 digits")
     args = ap.parse_args()
     if args.f32:
-        fmt = f32_full if args.f32 == "full" else f32_shortest
+        fmt = {"full": f32_full, "shortest": f32_shortest, "nine": f32_nine}[args.f32]
     else:
         fmt = "%%.%dg" % args.digits if args.digits else "%%.%df" % args.decimals
     os.makedirs(args.out, exist_ok=True)

@@ -142,8 +142,8 @@ impl Mesh {
 /// a fixed number of significant digits (`%g`, C++ streams: half a step of the largest
 /// coordinate's last digit, for the most digits any coordinate carries, 6 to 9).
 /// Coordinates stored in single precision ([`single_rounding`]: a float32 array from
-/// VTK, a binary STL, a GPU pipeline) are read as rounded by one step of an f32 at the
-/// largest coordinate, whether printed in full or with the fewest digits that read back.
+/// VTK, a binary STL, a GPU pipeline, an assimp export) are read as rounded by one step
+/// of an f32 at the largest coordinate, printed in full or short.
 /// Coordinates of more digits (made in f64), of fewer (a box at ±0.5 m: nothing was
 /// rounded off, or too little to tell), or beyond 1 km at fixed decimals (where f64
 /// cannot tell 9 decimals apart) read as exact.
@@ -163,21 +163,27 @@ const SHORTEST_SAMPLE: usize = 4096;
 /// on), or 0 when they did not. Printed in full (`0.10000000149011612`, what
 /// `json.dumps(numpy.float32(x).tolist())` writes), every coordinate is an f32 read back
 /// exactly, and some are not short decimals (a box at ±0.5 m is an f32 too, but nothing
-/// was rounded off). Printed shortest (`0.1`, `str(numpy.float32(x))`), every
-/// coordinate looked at (up to [`SHORTEST_SAMPLE`], spread over the mesh) has as many
-/// digits as the shortest decimal of its f32; `decimals`: whether the digits showed
-/// rounding already (else too few to tell). Most coordinates written with 8 or 9
-/// digits from f64 have more digits than their f32 needs, so a sample of thousands
-/// does not mistake the one for the other.
+/// was rounded off). Printed short (`0.1`, `str(numpy.float32(x))`; `0.100000001`,
+/// `%.9g` as C++ streams at `max_digits10` and assimp write), every coordinate looked at
+/// (up to [`SHORTEST_SAMPLE`], spread over the mesh) has as many digits as the shortest
+/// decimal of its f32, or is its f32 rounded to the digits written; `decimals`: whether
+/// the digits showed rounding already (else too few to tell). Most coordinates written
+/// with 8 or 9 digits from f64 are neither, so a sample of thousands does not mistake
+/// the one for the other.
 fn single_rounding(vertices: &[DVec3], decimals: bool) -> f64 {
     let coords = || vertices.iter().flat_map(|v| v.to_array());
     let in_full = || coords().all(|x| (x as f32) as f64 == x) && coords().any(|x| !whole(x, 9));
-    // as many digits as the f32's shortest decimal (writers break ties either way)
+    // as many digits as the f32's shortest decimal (writers break ties either way), or
+    // the f32 rounded to as many digits as were written, up to the 9 that tell any two
+    // f32s apart (`%.9g`, `max_digits10`: what C++ streams and assimp write)
     let shortest = || {
         let step = (3 * vertices.len()).div_ceil(SHORTEST_SAMPLE).max(1);
-        coords()
-            .step_by(step)
-            .all(|x| digits_of(&format!("{x}")) == digits_of(&format!("{}", x as f32)))
+        coords().step_by(step).all(|x| {
+            let (single, digits) = (x as f32, digits_of(&format!("{x}")));
+            digits == digits_of(&format!("{single}"))
+                || (digits.max(1)..=9)
+                    .any(|k| format!("{:.*e}", k - 1, single as f64).parse::<f64>() == Ok(x))
+        })
     };
     if !(in_full() || decimals && shortest()) {
         return 0.0;
@@ -571,17 +577,12 @@ mod tests {
         };
         let in_full: fn(f32) -> f64 = |x| x as f64;
         let shortest: fn(f32) -> f64 = |x| format!("{x}").parse().expect("a number");
+        let nine: fn(f32) -> f64 = |x| format!("{:.8e}", x as f64).parse().expect("a number");
         for (r, e) in [(1.3, 0), (200.0, 7)] {
-            assert_eq!(
-                written_rounding(&single(r, in_full)),
-                2f64.powi(e - 23),
-                "{r}"
-            );
-            assert_eq!(
-                written_rounding(&single(r, shortest)),
-                2f64.powi(e - 23),
-                "{r}"
-            );
+            for (how, print) in [("in full", in_full), ("shortest", shortest), ("%.9g", nine)] {
+                let r_read = written_rounding(&single(r, print));
+                assert_eq!(r_read, 2f64.powi(e - 23), "{r} {how}");
+            }
         }
         // -1.39453125 lies halfway between two 8-digit decimals: Rust writes the one
         // above, Python's `%.8g` the one below (every coordinate of so few is looked at)

@@ -150,12 +150,14 @@ impl Mesh {
 pub fn written_rounding(vertices: &[DVec3]) -> f64 {
     // `%g` writes its small coordinates with more decimals than its large ones, whose
     // last digit rounds by more; `%.9f` writes more digits than `%g` reads
-    let written = decimal_rounding(vertices).max(significant_rounding(vertices));
-    written.max(single_rounding(vertices, written > 0.0))
+    let (decimals, digits) = (decimal_rounding(vertices), significant_rounding(vertices));
+    decimals
+        .max(digits)
+        .max(single_rounding(vertices, decimals, digits > 0.0))
 }
 
-/// Coordinates looked at to tell whether short decimals are f32s printed shortest.
-const SHORTEST_SAMPLE: usize = 4096;
+/// Coordinates looked at to tell whether short decimals are f32s printed short.
+const SHORT_SAMPLE: usize = 4096;
 
 /// [`written_rounding`] for coordinates that went through f32: one step of its 24-bit
 /// significand at the largest coordinate (an f32 rounds a coordinate by up to half a
@@ -165,36 +167,41 @@ const SHORTEST_SAMPLE: usize = 4096;
 /// exactly, and some are not short decimals (a box at ±0.5 m is an f32 too, but nothing
 /// was rounded off). Printed short (`0.1`, `str(numpy.float32(x))`; `0.100000001`,
 /// `%.9g` as C++ streams at `max_digits10` and assimp write), every coordinate looked at
-/// (up to [`SHORTEST_SAMPLE`], spread over the mesh) has as many digits as the shortest
-/// decimal of its f32, or is its f32 rounded to the digits written; `decimals`: whether
-/// the digits showed rounding already (else too few to tell). Most coordinates written
-/// with 8 or 9 digits from f64 are neither, so a sample of thousands does not mistake
-/// the one for the other.
-fn single_rounding(vertices: &[DVec3], decimals: bool) -> f64 {
+/// (up to [`SHORT_SAMPLE`], spread over the mesh) has as many digits as the shortest
+/// decimal of its f32, or is its f32 rounded to the digits written. `decimals` and
+/// `digits`: the other readings ([`decimal_rounding`], and whether
+/// [`significant_rounding`] found 6 to 9 digits): without digits there are too few to
+/// tell, and fixed decimals at least half as coarse as an f32's step explain short
+/// coordinates themselves (`%.6f` of a 9.5 m coordinate is as short as its f32 printed
+/// shortest). Most coordinates written with 8 or 9 digits from f64 are neither, so a
+/// sample of thousands does not mistake the one for the other.
+fn single_rounding(vertices: &[DVec3], decimals: f64, digits: bool) -> f64 {
     let coords = || vertices.iter().flat_map(|v| v.to_array());
-    let in_full = || coords().all(|x| (x as f32) as f64 == x) && coords().any(|x| !whole(x, 9));
-    // as many digits as the f32's shortest decimal (writers break ties either way), or
-    // the f32 rounded to as many digits as were written, up to the 9 that tell any two
-    // f32s apart (`%.9g`, `max_digits10`: what C++ streams and assimp write)
-    let shortest = || {
-        let step = (3 * vertices.len()).div_ceil(SHORTEST_SAMPLE).max(1);
-        coords().step_by(step).all(|x| {
-            let (single, digits) = (x as f32, digits_of(&format!("{x}")));
-            digits == digits_of(&format!("{single}"))
-                || (digits.max(1)..=9)
-                    .any(|k| format!("{:.*e}", k - 1, single as f64).parse::<f64>() == Ok(x))
-        })
-    };
-    if !(in_full() || decimals && shortest()) {
-        return 0.0;
-    }
     let largest = coords().map(f64::abs).fold(0.0, f64::max);
     if !largest.is_normal() {
         return 0.0;
     }
     // the largest coordinate's binary exponent, read from its bits (no rounded log)
-    let exponent = ((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    2f64.powi(exponent - 23)
+    let step = 2f64.powi(((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023 - 23);
+    let in_full = || coords().all(|x| (x as f32) as f64 == x) && coords().any(|x| !whole(x, 9));
+    // as many digits as the f32's shortest decimal (writers break ties either way), or
+    // the f32 rounded to as many digits as were written, up to the 9 that tell any two
+    // f32s apart (`%.9g`, `max_digits10`: what C++ streams and assimp write)
+    let printed_short = || {
+        let every = (3 * vertices.len()).div_ceil(SHORT_SAMPLE).max(1);
+        coords().step_by(every).all(|x| {
+            let (single, written) = (x as f32, digits_of(&format!("{x}")));
+            written == digits_of(&format!("{single}"))
+                || (written.max(1)..=9)
+                    .any(|k| format!("{:.*e}", k - 1, single as f64).parse::<f64>() == Ok(x))
+        })
+    };
+    let short = digits && decimals < 0.5 * step;
+    if in_full() || short && printed_short() {
+        step
+    } else {
+        0.0
+    }
 }
 
 /// Within a thousandth of a step, `x`·10ᵏ is a whole number: a decimal read into f64 is
@@ -588,8 +595,16 @@ mod tests {
         // above, Python's `%.8g` the one below (every coordinate of so few is looked at)
         let mut tie = single(1.3, shortest);
         tie.push(DVec3::new(-1.3945312, 0.5, 0.5));
-        assert!(3 * tie.len() <= SHORTEST_SAMPLE);
+        assert!(3 * tie.len() <= SHORT_SAMPLE);
         assert_eq!(written_rounding(&tie), 2f64.powi(-23));
+        // 6 decimals of coordinates up to 9.5 m are as short as their f32s printed
+        // shortest (an f32's step there is 9.5e-7 m): the decimals are what was written
+        let big: Vec<DVec3> = ball.vertices.iter().map(|v| *v * 9.5 / 1.3).collect();
+        let big6: Vec<DVec3> = big
+            .iter()
+            .map(|v| v.map(|x| (x * 1e6).round() / 1e6))
+            .collect();
+        assert_eq!(written_rounding(&big6), 0.5e-6);
         // (the cube above is an f32 box too, and was not rounded) one coordinate of a
         // ball made in f64 among f32s says that they are not all f32s
         let mut one_f64 = single(1.3, in_full);

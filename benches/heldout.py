@@ -23,7 +23,7 @@ import argparse, json, math, os, random, sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes"))
 from generate import tumbling  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from written import f32_full, f32_nine, f32_shortest  # noqa: E402
+from written import add_writing, writer  # noqa: E402
 
 MATERIAL = {"name": "surface", "model": "rough-conductor", "alpha": 0.3, "n": 1.4, "k": 7.5, "kd": 0.1}
 
@@ -144,13 +144,9 @@ def cluster():
     return V, T
 
 
-def obj_text(V, T, decimals, digits=None, single=None):
-    if single:
-        write = {"full": f32_full, "shortest": f32_shortest, "nine": f32_nine}[single]
-        vertices = "".join("v %s %s %s\n" % tuple(write(x) for x in v) for v in V)
-    else:
-        fmt = "v %.{0}{1} %.{0}{1} %.{0}{1}\n".format(*((digits, "g") if digits else (decimals, "f")))
-        vertices = "".join(fmt % tuple(v) for v in V)
+def obj_text(V, T, write):
+    """The OBJ text of vertices V and triangles T, each coordinate written by `write`."""
+    vertices = "".join("v %s %s %s\n" % tuple(write(x) for x in v) for v in V)
     return vertices + "usemtl surface\n" + "".join(
         "f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1) for t in T)
 
@@ -158,15 +154,13 @@ def obj_text(V, T, decimals, digits=None, single=None):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default="target/heldout")
-    ap.add_argument("--decimals", type=int, default=9)
-    ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
-    ap.add_argument("--f32", choices=["full", "shortest", "nine"],
-                    help="single precision instead, printed in full, shortest or to 9 digits")
+    add_writing(ap, decimals=9)
     args = ap.parse_args()
+    write = writer(args)
     os.makedirs(args.out, exist_ok=True)
     for name, build in [("torus", torus), ("truss", truss), ("station", station), ("cluster", cluster)]:
         V, T = build()
-        text = obj_text(V, T, args.decimals, args.digits, args.f32)
+        text = obj_text(V, T, write)
         with open(os.path.join(args.out, name + ".obj"), "w") as f:
             f.write(text)
         request = {

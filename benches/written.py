@@ -44,8 +44,23 @@ def f32_shortest(x):
     return repr(f)
 
 
-def rewritten(text, fmt):
-    write = fmt if callable(fmt) else (lambda x: fmt % x)
+def add_writing(ap, decimals):
+    """The options that say how coordinates are written (`decimals`: the default count)."""
+    ap.add_argument("--decimals", type=int, default=decimals)
+    ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
+    ap.add_argument("--f32", choices=["full", "shortest", "nine"],
+                    help="single precision instead, printed in full, shortest or to 9 digits")
+
+
+def writer(args):
+    """A coordinate (float) as text, as `add_writing`'s options say."""
+    if args.f32:
+        return {"full": f32_full, "shortest": f32_shortest, "nine": f32_nine}[args.f32]
+    fmt = "%%.%dg" % args.digits if args.digits else "%%.%df" % args.decimals
+    return lambda x: fmt % x
+
+
+def rewritten(text, write):
     out = []
     for line in text.splitlines():
         if line.startswith("v "):
@@ -58,19 +73,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("objects", help="directory of `glint export-objects`")
     ap.add_argument("--out", default="target/written")
-    ap.add_argument("--decimals", type=int, default=6)
-    ap.add_argument("--digits", type=int, help="significant digits instead of decimals")
-    ap.add_argument("--f32", choices=["full", "shortest", "nine"],
-                    help="single precision instead, printed in full, shortest or to 9 digits")
+    add_writing(ap, decimals=6)
     args = ap.parse_args()
-    if args.f32:
-        fmt = {"full": f32_full, "shortest": f32_shortest, "nine": f32_nine}[args.f32]
-    else:
-        fmt = "%%.%dg" % args.digits if args.digits else "%%.%df" % args.decimals
+    write = writer(args)
     os.makedirs(args.out, exist_ok=True)
     for c in CLASSES:
         with open(os.path.join(args.objects, c + ".obj")) as f:
-            text = rewritten(f.read(), fmt)
+            text = rewritten(f.read(), write)
         with open(os.path.join(SCENES, c + ".json")) as f:
             request = json.load(f)
         request["object"]["mesh"] = {"obj": text}

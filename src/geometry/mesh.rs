@@ -41,24 +41,13 @@ impl Mesh {
     /// [`Mesh::welded_ids`], welding only vertices of one group when `group` (per
     /// vertex) is given: parts that move apart (articulated links) never share an edge.
     pub fn welded_ids_within(&self, group: Option<&[u32]>) -> Vec<u32> {
-        // sorted by position, then index: each run of one position starts with its first
-        let mut keyed: Vec<([u64; 3], u32, u32)> = self
-            .vertices
-            .iter()
-            .enumerate()
-            .map(|(i, v)| {
-                let g = group.map_or(0, |g| g[i]);
-                ([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()], g, i as u32)
-            })
-            .collect();
-        keyed.par_sort_unstable();
-        let mut ids = vec![0u32; keyed.len()];
-        for run in keyed.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
-            for &(_, _, i) in run {
-                ids[i as usize] = run[0].2;
-            }
-        }
-        ids
+        // A vertex's place: its position's bits, and its group.
+        let place = |i: usize| {
+            let v = self.vertices[i];
+            let g = group.map_or(0, |g| g[i]);
+            ([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()], g)
+        };
+        first_at_place(self.vertices.len(), place, place_hash)
     }
 
     /// The welded ids ([`Mesh::welded_ids`]) and every triangle's edges by their welded
@@ -421,6 +410,88 @@ fn split_points(points: &mut [DVec3], start: usize, end: usize, nodes: &mut Vec<
     split_points(points, start + mid, end, nodes);
 }
 
+/// For each of `n` items, the least index with the same place (`place(i)`), found
+/// through `hash` of the places. Every place's items fall in one bucket of the hash's
+/// top bits (about a hundred items a bucket); sorted by hash and index within its
+/// bucket, a run of one hash starts with its least index, which each item of the run
+/// takes. Each item is then checked against the one it took, and a run in which two
+/// places share a hash is done again by place. No comparison sort of all the places:
+/// a triangle soup of 600k vertices (every triangle its own corners, as STL files and
+/// many OBJ exporters write them) sorted by place took 40–60 ms, most of a
+/// 200k-triangle cubesat's preparation (docs/performance.md, twenty-fourth sitting).
+fn first_at_place<P: PartialEq + Ord + Copy + Send>(
+    n: usize,
+    place: impl Fn(usize) -> P + Sync,
+    hash: impl Fn(P) -> u64 + Sync,
+) -> Vec<u32> {
+    let hashes: Vec<u64> = (0..n).into_par_iter().map(|i| hash(place(i))).collect();
+    let bits = (n / 128)
+        .max(1)
+        .next_power_of_two()
+        .trailing_zeros()
+        .clamp(1, 16);
+    let bucket = |h: u64| (h >> (64 - bits)) as u32;
+    let (start, mut keyed) = csr_of(
+        1 << bits,
+        hashes
+            .iter()
+            .enumerate()
+            .map(|(i, &h)| (bucket(h), (h, i as u32))),
+    );
+    // each bucket by (hash, index); each entry's hash then replaced by its run's first
+    keyed
+        .par_chunk_by_mut(|a, b| bucket(a.0) == bucket(b.0))
+        .for_each(|items| {
+            items.sort_unstable();
+            for run in items.chunk_by_mut(|a, b| a.0 == b.0) {
+                let first = u64::from(run[0].1);
+                run.iter_mut().for_each(|e| e.0 = first);
+            }
+        });
+    let mut ids = vec![0u32; n];
+    for &(first, i) in &keyed {
+        ids[i as usize] = first as u32;
+    }
+    // an item whose first differs in place shares its hash with another place
+    let mut clashes: Vec<u64> = (0..n)
+        .into_par_iter()
+        .filter(|&i| place(ids[i] as usize) != place(i))
+        .map(|i| hashes[i])
+        .collect();
+    clashes.sort_unstable();
+    clashes.dedup();
+    for h in clashes {
+        let b = bucket(h) as usize;
+        let mut by_place: Vec<(P, u32)> = keyed[start[b] as usize..start[b + 1] as usize]
+            .iter()
+            .filter(|e| hashes[e.1 as usize] == h)
+            .map(|&(_, i)| (place(i as usize), i))
+            .collect();
+        by_place.sort_unstable();
+        for same in by_place.chunk_by(|a, b| a.0 == b.0) {
+            for &(_, i) in same {
+                ids[i as usize] = same[0].1;
+            }
+        }
+    }
+    ids
+}
+
+/// A hash of a vertex's place (its position's bits and its group) for
+/// [`Mesh::welded_ids_within`]: its parts mixed so that positions a bit apart land far
+/// apart (splitmix64's finaliser on a multiply-xor fold).
+#[inline]
+fn place_hash((bits, group): ([u64; 3], u32)) -> u64 {
+    let mix = |h: u64| {
+        let h = (h ^ (h >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        let h = (h ^ (h >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        h ^ (h >> 31)
+    };
+    let h = mix(bits[0] ^ u64::from(group).rotate_left(32));
+    let h = mix(h ^ bits[1]);
+    mix(h ^ bits[2])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -471,6 +542,65 @@ mod tests {
             }
         }
         assert!(checked.iter().all(|&k| k > 100), "{checked:?}");
+    }
+
+    #[test]
+    fn each_vertex_is_welded_to_the_first_at_its_place() {
+        // the brute-force answer: the least index with the same bits and group
+        fn first_at(vs: &[DVec3], group: Option<&[u32]>) -> Vec<u32> {
+            let place = |i: usize| {
+                let v = vs[i];
+                let g = group.map_or(0, |g| g[i]);
+                ([v.x.to_bits(), v.y.to_bits(), v.z.to_bits()], g)
+            };
+            (0..vs.len())
+                .map(|i| (0..=i).find(|&k| place(k) == place(i)).unwrap() as u32)
+                .collect()
+        }
+        // a ball whose triangles each have their own corners (five or six vertices a
+        // place), 200 vertices at one place (past the short runs), +0 and −0 (places
+        // apart: their bits differ), in a shuffled order
+        let ball = crate::geometry::builtin::geodesic_sphere(3, 1.0);
+        let mut vs: Vec<DVec3> = ball
+            .triangles
+            .iter()
+            .flat_map(|t| t.map(|k| ball.vertices[k as usize]))
+            .collect();
+        vs.extend(std::iter::repeat_n(DVec3::new(2.0, 0.5, -1.0), 200));
+        vs.extend([DVec3::new(0.0, 1.0, 5.0), DVec3::new(-0.0, 1.0, 5.0)]);
+        vs.extend([DVec3::new(0.0, 1.0, 5.0), DVec3::new(-0.0, 1.0, 5.0)]);
+        let n = vs.len();
+        let order: Vec<usize> = (0..n).map(|i| (i * 7919) % n).collect();
+        assert!(
+            n % 7919 != 0,
+            "i·7919 mod n is a permutation when 7919 (prime) does not divide n"
+        );
+        let vs: Vec<DVec3> = order.iter().map(|&i| vs[i]).collect();
+        let mesh = Mesh {
+            vertices: vs.clone(),
+            ..Mesh::default()
+        };
+        assert_eq!(mesh.welded_ids(), first_at(&vs, None));
+        // groups split places: every third vertex in group 1
+        let group: Vec<u32> = (0..n as u32).map(|i| u32::from(i % 3 == 0)).collect();
+        assert_eq!(
+            mesh.welded_ids_within(Some(&group)),
+            first_at(&vs, Some(&group))
+        );
+        // hashes that clash: every place one hash, and two hashes for many places
+        let places = |i: usize| (vs[i].x.to_bits(), vs[i].y.to_bits(), vs[i].z.to_bits());
+        let want = first_at(&vs, None);
+        assert_eq!(first_at_place(n, places, |_| 0), want);
+        assert_eq!(first_at_place(n, places, |p| p.0 & 1), want);
+        // and the welding is not idle: the ball's corners share places
+        assert!(
+            mesh.welded_ids()
+                .iter()
+                .enumerate()
+                .filter(|&(i, &w)| w as usize != i)
+                .count()
+                > n / 2
+        );
     }
 
     #[test]

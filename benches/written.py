@@ -4,13 +4,15 @@ are written with N decimals or N significant digits, or stored in single precisi
 the class's request.
 
     glint export-objects --detail medium --dir DIR/objects
-    python3 benches/written.py DIR/objects --out DIR [--decimals N | --digits N | --f32 HOW]
+    python3 benches/written.py DIR/objects --out DIR [--decimals N | --digits N | --f32 HOW] [--soup]
 
 `--f32 full` writes each coordinate rounded to the nearest f32 and printed in full, as
 `json.dumps(numpy.float32(x).tolist())` does (a float32 array from VTK, PyVista or a binary
 STL, handed over as Python floats); `--f32 shortest` prints that f32 with the fewest digits
 that read back to it, as `str(numpy.float32(x))` and most f32 writers do; `--f32 nine` with 9
 significant digits (`%.9g`), as C++ streams at `max_digits10` and assimp's OBJ export do.
+`--soup` gives every triangle three vertices of its own (a triangle soup, as every STL file
+and many OBJ exporters store a mesh): the same triangles, six times the vertices.
 
 Writes DIR/CLASS.json for each class (box-wing, rocket-body, fragment, dish-sat, cubesat):
 scenes/CLASS.json with the OBJ text inline, coordinates re-written from the export's (9
@@ -60,11 +62,21 @@ def writer(args):
     return lambda x: fmt % x
 
 
-def rewritten(text, write):
-    out = []
+def rewritten(text, write, soup=False):
+    """The OBJ `text` with its coordinates written by `write`; with `soup`, each face with
+    vertices of its own, written just before it."""
+    out, vertices, written = [], [], 0
     for line in text.splitlines():
         if line.startswith("v "):
             line = "v " + " ".join(write(float(w)) for w in line.split()[1:4])
+            if soup:
+                vertices.append(line)
+                continue
+        elif soup and line.startswith("f "):
+            corners = [int(c.split("/")[0]) for c in line.split()[1:]]
+            out.extend(vertices[c - 1] for c in corners)
+            line = "f " + " ".join(str(written + k + 1) for k in range(len(corners)))
+            written += len(corners)
         out.append(line)
     return "\n".join(out) + "\n"
 
@@ -74,12 +86,14 @@ def main():
     ap.add_argument("objects", help="directory of `glint export-objects`")
     ap.add_argument("--out", default="target/written")
     add_writing(ap, decimals=6)
+    ap.add_argument("--soup", action="store_true",
+                    help="every triangle three vertices of its own, as an STL file stores it")
     args = ap.parse_args()
     write = writer(args)
     os.makedirs(args.out, exist_ok=True)
     for c in CLASSES:
         with open(os.path.join(args.objects, c + ".obj")) as f:
-            text = rewritten(f.read(), write)
+            text = rewritten(f.read(), write, args.soup)
         with open(os.path.join(SCENES, c + ".json")) as f:
             request = json.load(f)
         request["object"]["mesh"] = {"obj": text}

@@ -9,6 +9,7 @@ use super::polygon_tree::FaceTrees;
 use crate::geometry::articulation::Motion;
 use crate::geometry::{Faces, Mesh};
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 
 /// The faces' planes and their polygons.
 #[derive(Clone)]
@@ -43,12 +44,49 @@ impl Polygons {
     /// it should for rounding alone (a face whose outline's hull exceeds it by no more
     /// than a strip that wide along the hull is convex).
     pub fn build(mesh: &Mesh, faces: &Faces, two_sided: Vec<bool>, eps: f64) -> Polygons {
+        // Runs of faces built side by side, then joined in order: a few large faces (a
+        // cubesat's ten sides of 20k triangles each, whose outlines' hulls are most of
+        // the work) then no longer take one thread while the other waits.
         let nf = faces.len();
+        let run = (nf / 16).clamp(1, 4096);
+        let parts: Vec<Polygons> = faces
+            .faces
+            .par_chunks(run)
+            .enumerate()
+            .map(|(c, run_faces)| Polygons::build_run(mesh, run_faces, c * run, eps))
+            .collect();
         let mut p = Polygons {
+            two_sided,
+            ..Polygons::empty(nf)
+        };
+        for part in parts {
+            let (spans, corners) = (p.spans.len() as u32, p.corners.len() as u32);
+            p.normal.extend(part.normal);
+            p.point.extend(part.point);
+            p.basis.extend(part.basis);
+            p.convex.extend(part.convex);
+            p.inside.extend(part.inside);
+            p.centre.extend(part.centre);
+            p.radius.extend(part.radius);
+            p.of_face
+                .extend(part.of_face.iter().map(|&(a, b)| (a + spans, b + spans)));
+            p.face.extend(part.face);
+            p.spans
+                .extend(part.spans.iter().map(|&(a, b)| (a + corners, b + corners)));
+            p.corners.extend(part.corners);
+            p.corners2.extend(part.corners2);
+        }
+        p.trees = FaceTrees::build(&p.of_face, |k| p.corners2(k));
+        p
+    }
+
+    /// No faces, with room for `nf`.
+    fn empty(nf: usize) -> Polygons {
+        Polygons {
             normal: Vec::with_capacity(nf),
             point: Vec::with_capacity(nf),
             basis: Vec::with_capacity(nf),
-            two_sided,
+            two_sided: Vec::new(),
             convex: Vec::with_capacity(nf),
             inside: Vec::with_capacity(nf),
             centre: Vec::with_capacity(nf),
@@ -59,10 +97,22 @@ impl Polygons {
             corners: Vec::new(),
             corners2: Vec::new(),
             trees: FaceTrees::default(),
-        };
+        }
+    }
+
+    /// The polygons of a run of faces, the first of which is face `first_face` (their
+    /// ranges counted from the run's own start; no two-sidedness, no trees).
+    fn build_run(
+        mesh: &Mesh,
+        faces: &[crate::geometry::Face],
+        first_face: usize,
+        eps: f64,
+    ) -> Polygons {
+        let mut p = Polygons::empty(faces.len());
         let (mut pts, mut ids, mut order, mut hull) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for (i, f) in faces.faces.iter().enumerate() {
+        for (i, f) in faces.iter().enumerate() {
+            let i = first_face + i;
             let n = f.normal;
             let (u, w) = basis(n);
             let o = mesh.vertices[mesh.triangles[f.triangles[0] as usize][0] as usize];
@@ -130,7 +180,6 @@ impl Polygons {
             p.convex.push(convex);
             p.of_face.push((first, p.spans.len() as u32));
         }
-        p.trees = FaceTrees::build(&p.of_face, |k| p.corners2(k));
         p
     }
 

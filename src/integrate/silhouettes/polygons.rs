@@ -45,8 +45,8 @@ impl Polygons {
     /// than a strip that wide along the hull is convex).
     pub fn build(mesh: &Mesh, faces: &Faces, two_sided: Vec<bool>, eps: f64) -> Polygons {
         // Runs of faces built side by side, then joined in order: a few large faces (a
-        // cubesat's ten sides of 20k triangles each, whose outlines' hulls are most of
-        // the work) then no longer take one thread while the other waits.
+        // cubesat's ten sides of 20k triangles each) no longer take one thread while the
+        // other waits (docs/performance.md, twenty-fourth sitting).
         let nf = faces.len();
         let run = (nf / 16).clamp(1, 4096);
         let parts: Vec<Polygons> = faces

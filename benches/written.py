@@ -12,7 +12,7 @@ STL, handed over as Python floats); `--f32 shortest` prints that f32 with the fe
 that read back to it, as `str(numpy.float32(x))` and most f32 writers do; `--f32 nine` with 9
 significant digits (`%.9g`), as C++ streams at `max_digits10` and assimp's OBJ export do.
 `--soup` gives every triangle three vertices of its own (a triangle soup, as every STL file
-and many OBJ exporters store a mesh): the same triangles, six times the vertices.
+and many OBJ exporters store a mesh): the same triangles, about six times the vertices.
 
 Writes DIR/CLASS.json for each class (box-wing, rocket-body, fragment, dish-sat, cubesat):
 scenes/CLASS.json with the OBJ text inline, coordinates re-written from the export's (9

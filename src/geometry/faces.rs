@@ -444,10 +444,7 @@ pub(crate) mod tests {
             assert_eq!(Faces::build(&m, true).len(), 2, "{digits} digits");
         }
         // and stored in single precision, printed in full, shortest or to 9 digits
-        let in_full: fn(f32) -> f64 = |x| x as f64;
-        let shortest: fn(f32) -> f64 = |x| format!("{x}").parse().expect("a number");
-        let nine: fn(f32) -> f64 = |x| format!("{:.8e}", x as f64).parse().expect("a number");
-        for (how, print) in [("in full", in_full), ("shortest", shortest), ("%.9g", nine)] {
+        for (how, print) in crate::geometry::mesh::F32_PRINTS {
             let mut m = written(plate.clone(), 12);
             for v in &mut m.vertices {
                 *v = v.map(|x| print(x as f32));

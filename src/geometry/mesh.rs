@@ -166,13 +166,18 @@ const SHORT_SAMPLE: usize = 4096;
 /// sample of thousands does not mistake the one for the other.
 fn single_rounding(vertices: &[DVec3], decimals: f64, digits: bool) -> f64 {
     let coords = || vertices.iter().flat_map(|v| v.to_array());
+    // most meshes are made in f64: their first coordinate that is no f32 ends this, before
+    // the largest coordinate is looked for
+    let in_full = coords().all(|x| (x as f32) as f64 == x) && coords().any(|x| !whole(x, 9));
+    if !in_full && !digits {
+        return 0.0;
+    }
     let largest = coords().map(f64::abs).fold(0.0, f64::max);
     if !largest.is_normal() {
         return 0.0;
     }
     // the largest coordinate's binary exponent, read from its bits (no rounded log)
     let step = 2f64.powi(((largest.to_bits() >> 52) & 0x7ff) as i32 - 1023 - 23);
-    let in_full = || coords().all(|x| (x as f32) as f64 == x) && coords().any(|x| !whole(x, 9));
     // as many digits as the f32's shortest decimal (writers break ties either way), or
     // the f32 rounded to as many digits as were written, up to the 9 that tell any two
     // f32s apart (`%.9g`, `max_digits10`: what C++ streams and assimp write)
@@ -186,7 +191,7 @@ fn single_rounding(vertices: &[DVec3], decimals: f64, digits: bool) -> f64 {
         })
     };
     let short = digits && decimals < 0.5 * step;
-    if in_full() || short && printed_short() {
+    if in_full || short && printed_short() {
         step
     } else {
         0.0
@@ -419,7 +424,7 @@ fn split_points(points: &mut [DVec3], start: usize, end: usize, nodes: &mut Vec<
 /// a triangle soup of 600k vertices (every triangle its own corners, as STL files and
 /// many OBJ exporters write them) sorted by place took 40–60 ms, most of a
 /// 200k-triangle cubesat's preparation (docs/performance.md, twenty-fourth sitting).
-fn first_at_place<P: PartialEq + Ord + Copy + Send>(
+fn first_at_place<P: Ord + Copy + Send>(
     n: usize,
     place: impl Fn(usize) -> P + Sync,
     hash: impl Fn(P) -> u64 + Sync,
@@ -491,6 +496,23 @@ fn place_hash((bits, group): ([u64; 3], u32)) -> u64 {
     let h = mix(h ^ bits[1]);
     mix(h ^ bits[2])
 }
+
+/// An f32 printed by some writer, read back as f64.
+#[cfg(test)]
+pub(crate) type F32Print = fn(f32) -> f64;
+
+/// An f32 as three writers hand it over, read back: in full (`json.dumps` of a float32
+/// array's `tolist()`), shortest (`str(numpy.float32(x))`) and to 9 significant digits
+/// (`%.9g`, C++ streams at `max_digits10`, assimp). For the tests of meshes stored in
+/// single precision.
+#[cfg(test)]
+pub(crate) const F32_PRINTS: [(&str, F32Print); 3] = [
+    ("in full", |x| x as f64),
+    ("shortest", |x| format!("{x}").parse().expect("a number")),
+    ("%.9g", |x| {
+        format!("{:.8e}", x as f64).parse().expect("a number")
+    }),
+];
 
 #[cfg(test)]
 mod tests {
@@ -712,11 +734,9 @@ mod tests {
                 .map(|v| (*v * r / 1.3).map(|x| print(x as f32)))
                 .collect()
         };
-        let in_full: fn(f32) -> f64 = |x| x as f64;
-        let shortest: fn(f32) -> f64 = |x| format!("{x}").parse().expect("a number");
-        let nine: fn(f32) -> f64 = |x| format!("{:.8e}", x as f64).parse().expect("a number");
+        let [(_, in_full), (_, shortest), _] = F32_PRINTS;
         for (r, e) in [(1.3, 0), (200.0, 7)] {
-            for (how, print) in [("in full", in_full), ("shortest", shortest), ("%.9g", nine)] {
+            for (how, print) in F32_PRINTS {
                 let r_read = written_rounding(&single(r, print));
                 assert_eq!(r_read, 2f64.powi(e - 23), "{r} {how}");
             }

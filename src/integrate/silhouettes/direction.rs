@@ -6,6 +6,7 @@
 use super::folds::Fold;
 use super::lines::{self, Across, Line, LineGrid};
 use super::patches::Facing;
+use super::slab::SlabAlong;
 use super::Silhouettes;
 use crate::geometry::polygon;
 use glam::{DVec2, DVec3};
@@ -148,17 +149,13 @@ impl Silhouettes<'_> {
         let faces = self.patches.faces_of(p);
         let whole = facing == Facing::Along
             || (facing == Facing::Away && self.polys.two_sided[faces[0] as usize]);
-        self.folds_above(dir, p);
-        if whole && !dir.near.is_empty() {
-            // of the folds over the patch's box, those that may shade its slab
-            if let Some(slab) = self.patches.slab[p].along(dir.across.d, self.tol) {
-                let folds = &dir.folds;
-                dir.near.retain(|n| {
-                    let f = &folds[n.fold as usize];
-                    slab.may_shade(f.a, f.b)
-                });
-            }
-        }
+        // of the folds over a patch's box, a patch that faces one way keeps those that
+        // may shade its slab
+        let slab = match whole {
+            true => self.patches.slab[p].along(dir.across.d, self.tol),
+            false => None,
+        };
+        self.folds_above(dir, p, slab.as_ref());
         if whole && dir.near.is_empty() && !self.patches.contacts[p] {
             dir.patch[p] = PatchState::Clean;
             return;
@@ -189,8 +186,9 @@ impl Silhouettes<'_> {
         }
     }
 
-    /// Fills `dir.near` with the folds above patch `p`'s box, each once.
-    fn folds_above(&self, dir: &mut Direction, p: usize) {
+    /// Fills `dir.near` with the folds above patch `p`'s box, each once (with `slab`,
+    /// only those that may shade it).
+    fn folds_above(&self, dir: &mut Direction, p: usize, slab: Option<&SlabAlong>) {
         let Across { d, u, w, .. } = dir.across;
         let (c, h) = (self.patches.centre[p], self.patches.half[p]);
         let reach = |a: DVec3| h.x * a.x.abs() + h.y * a.y.abs() + h.z * a.z.abs();
@@ -214,6 +212,9 @@ impl Silhouettes<'_> {
             }
             let (lo, hi) = (fold.pa.min(fold.pb), fold.pa.max(fold.pb));
             if lo.cmpgt(phi).any() || hi.cmplt(plo).any() || !line_meets_box(fold, plo, phi) {
+                return;
+            }
+            if slab.is_some_and(|s| !s.may_shade(fold.a, fold.b)) {
                 return;
             }
             near.push(Near {

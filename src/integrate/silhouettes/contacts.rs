@@ -4,6 +4,9 @@
 //! changes across one along a direction ([`Contact::jump`]).
 
 use super::level_grid::{LevelGrid, MIXED};
+use super::sheets::sheets;
+use super::topology::NONE;
+use crate::geometry::faces::WeldedEdge;
 use crate::geometry::Mesh;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -144,16 +147,20 @@ fn meeting_of(s: &Tri, t: &Tri, tol: f64) -> Option<(DVec3, DVec3)> {
 /// `grid`: the mesh's [`TriangleGrid`] at `tol` when built already, else built here.
 pub(super) fn contact_segments(
     mesh: &Mesh,
-    welded: &[u32],
+    (welded, edges): (&[u32], &[WeldedEdge]),
     tri_face: &[u32],
     group: Option<&[u32]>,
     tol: f64,
     grid: Option<TriangleGrid>,
 ) -> Vec<(u32, Contact)> {
-    PairSearch::new(mesh, welded, tri_face, group, tol, grid)
+    PairSearch::new(mesh, (welded, edges), tri_face, group, tol, grid)
         .finish()
         .on_faces(mesh, tri_face, tol)
 }
+
+/// Sheets are sought when at least one triangle in this many lies in a cell of several
+/// faces (sheets cost about as much a triangle as the search does an item of such a cell).
+const SHEETS_WORTH: usize = 8;
 
 /// A segment (m) where two triangles meet: (lower index, higher index, segment).
 type Pair = (u32, u32, (DVec3, DVec3));
@@ -167,7 +174,13 @@ type Pair = (u32, u32, (DVec3, DVec3));
 pub(super) struct PairSearch<'a> {
     mesh: &'a Mesh,
     welded: &'a [u32],
+    edges: &'a [WeldedEdge],
     tri_face: &'a [u32],
+    /// Per triangle, its sheet ([`super::sheets`]; two triangles of one never meet as
+    /// separate pieces), or [`NONE`]; empty until the work starts, with `group`, or where
+    /// sheets would not pay.
+    sheet: Vec<u32>,
+    sheets_found: bool,
     group: Option<&'a [u32]>,
     tol: f64,
     boxes: Vec<(DVec3, DVec3)>,
@@ -181,12 +194,13 @@ pub(super) struct PairSearch<'a> {
 }
 
 impl<'a> PairSearch<'a> {
-    /// The search over `mesh`'s triangles (welded ids `welded`, faces `tri_face` in any
-    /// numbering; with `group`, pairs only within one group; `grid`: the mesh's
-    /// [`TriangleGrid`] at `tol` when built already).
+    /// The search over `mesh`'s triangles (welded ids `welded` and edges `edges`, as
+    /// [`Mesh::welded_edges`] gives them; faces `tri_face` in any numbering; with `group`,
+    /// pairs only within one group; `grid`: the mesh's [`TriangleGrid`] at `tol` when
+    /// built already).
     pub fn new(
         mesh: &'a Mesh,
-        welded: &'a [u32],
+        (welded, edges): (&'a [u32], &'a [WeldedEdge]),
         tri_face: &'a [u32],
         group: Option<&'a [u32]>,
         tol: f64,
@@ -215,7 +229,10 @@ impl<'a> PairSearch<'a> {
         PairSearch {
             mesh,
             welded,
+            edges,
             tri_face,
+            sheet: Vec::new(),
+            sheets_found: false,
             group,
             tol,
             boxes,
@@ -231,8 +248,40 @@ impl<'a> PairSearch<'a> {
         self.run_while(|| !stop.load(Ordering::Relaxed));
     }
 
+    /// Finds the sheets and marks the cells that lie in one, once, before any pair is
+    /// tested (without `group`: an articulated mesh's pieces move apart).
+    fn find_sheets(&mut self) {
+        if self.group.is_some() || self.sheets_found || self.mesh.triangles.len() < 2 {
+            return;
+        }
+        self.sheets_found = true;
+        // only triangles in a cell of several faces are ever paired in one: where few are
+        // (large flat faces), the search is short and sheets would cost more than it
+        let paired = self.grid.in_mixed_cells();
+        if paired.iter().filter(|&&p| p).count() * SHEETS_WORTH < paired.len() {
+            return;
+        }
+        let mesh = self.mesh;
+        self.sheet = sheets(
+            |t| mesh.corners(t),
+            &mesh.triangles,
+            (self.welded, self.edges),
+            &paired,
+            self.tol,
+        );
+        self.grid.mark_sheets(&self.sheet);
+    }
+
+    /// Per triangle, its sheet, or [`NONE`].
+    #[inline]
+    fn sheet_of(&self, t: usize) -> u32 {
+        self.sheet.get(t).copied().unwrap_or(NONE)
+    }
+
     /// Does the work in order while `go()`, asked before each piece, says so.
     fn run_while(&mut self, mut go: impl FnMut() -> bool) {
+        // needed before any pair, whoever does the work
+        self.find_sheets();
         let end = *self.starts.last().unwrap();
         let (mut local, mut pairs) = (Vec::new(), Vec::new());
         let mut next = self.next;
@@ -251,6 +300,7 @@ impl<'a> PairSearch<'a> {
 
     /// The rest of the work on every thread: every pair, sorted.
     pub fn finish(mut self) -> MeetingPairs {
+        self.find_sheets();
         let mut pairs = std::mem::take(&mut self.pairs);
         let search = &self;
         let (starts, next) = (&self.starts, self.next);
@@ -283,8 +333,11 @@ impl<'a> PairSearch<'a> {
     fn cell_pairs(&self, l: usize, i: usize, local: &mut Vec<Binned>, out: &mut Vec<Pair>) {
         let (grid, group) = (&self.grid, self.group);
         let level = &grid.levels[l];
-        // a cell of one face's triangles holds no pair: pairs in one face are not contacts
-        if level.face.get(i).is_some_and(|&f| f != MIXED) {
+        // a cell of one face's triangles holds no pair: pairs in one face are not contacts;
+        // nor does a cell of one sheet's
+        if level.face.get(i).is_some_and(|&f| f != MIXED)
+            || level.sheet.get(i).is_some_and(|&s| s != MIXED)
+        {
             return;
         }
         // each pair of the cell's triangles, read from a copy of them gathered once (a cell
@@ -299,6 +352,7 @@ impl<'a> PairSearch<'a> {
             Binned {
                 t,
                 face: self.tri_face[t as usize],
+                sheet: self.sheet_of(t as usize),
                 corner: starts_in(first, cell),
                 lo,
                 hi,
@@ -309,6 +363,7 @@ impl<'a> PairSearch<'a> {
             for b in &local[j + 1..] {
                 if !owns(a.corner, b.corner)
                     || a.face == b.face
+                    || (a.sheet == b.sheet && a.sheet != NONE)
                     || !overlap((a.lo, a.hi), (b.lo, b.hi))
                     || group.is_some_and(|g| g[a.t as usize] != g[b.t as usize])
                 {
@@ -330,11 +385,13 @@ impl<'a> PairSearch<'a> {
         if grid.level[s] + 1 >= levels {
             return;
         }
+        let sheet_s = self.sheet_of(s);
         // a finer triangle s against a coarser one t (`first_s`: the cell of s's box's low
         // corner at t's level)
         let pair = |s: usize, t: usize, first_s: [u32; 3], cell: [u32; 3]| {
             let (bs, bt, first_t) = (boxes[s], boxes[t], grid.first[t]);
             if tri_face[s] == tri_face[t]
+                || (sheet_s != NONE && self.sheet_of(t) == sheet_s)
                 || group.is_some_and(|g| g[s] != g[t])
                 || !overlap(bs, bt)
                 || !owns(starts_in(first_s, cell), starts_in(first_t, cell))
@@ -505,6 +562,7 @@ impl Across {
 struct Binned {
     t: u32,
     face: u32,
+    sheet: u32,
     corner: u8,
     lo: DVec3,
     hi: DVec3,
@@ -870,7 +928,7 @@ mod tests {
         };
         super::super::fixtures::push_ball(&mut mesh, 12, 0.3, DVec3::new(0.4, 0.1, 0.2));
         let nt = mesh.triangles.len();
-        let welded = mesh.welded_ids();
+        let (welded, edges) = mesh.welded_edges();
         let tri_face: Vec<u32> = (0..nt as u32).collect();
         let tol = 1e-9;
         let corners: Vec<[DVec3; 3]> = (0..nt).map(|i| mesh.corners(i)).collect();
@@ -888,7 +946,8 @@ mod tests {
             grid,
             tol,
         };
-        let search = |tri_face, grid| PairSearch::new(&mesh, &welded, tri_face, None, tol, grid);
+        let search =
+            |tri_face, grid| PairSearch::new(&mesh, (&welded, &edges), tri_face, None, tol, grid);
         let found = search(&tri_face, Some(triangles(grid))).finish().0;
         let truth = all_pairs(&mesh, &welded, tol);
         // the ball crosses the plate and the rod: dozens of pairs, each found once
@@ -960,9 +1019,9 @@ mod tests {
         let faces = crate::geometry::Faces::build(&mesh, true);
         assert_eq!(faces.len(), 2, "the plate and the wall, each one face");
         let tri_face = faces.triangle_faces(mesh.triangles.len());
-        let welded = mesh.welded_ids();
+        let (welded, edges) = mesh.welded_edges();
         let tol = 2e-9;
-        let contacts = contact_segments(&mesh, &welded, &tri_face, None, tol, None);
+        let contacts = contact_segments(&mesh, (&welded, &edges), &tri_face, None, tol, None);
         // each face meets the other once, along the wall's whole width
         for f in 0..2 {
             let on: Vec<&Contact> = contacts.iter().filter(|c| c.0 == f).map(|c| &c.1).collect();
@@ -1041,9 +1100,47 @@ mod tests {
         }
         mesh.rounding = crate::geometry::mesh::written_rounding(&mesh.vertices);
         let tri_face: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
-        let welded = mesh.welded_ids();
-        let pairs = contact_segments(&mesh, &welded, &tri_face, None, mesh.tolerance(), None);
+        let (welded, edges) = mesh.welded_edges();
+        let pairs = contact_segments(
+            &mesh,
+            (&welded, &edges),
+            &tri_face,
+            None,
+            mesh.tolerance(),
+            None,
+        );
         assert!(pairs.is_empty(), "{} contacts", pairs.len());
+    }
+
+    #[test]
+    fn pairs_within_a_surface_that_crosses_itself_are_all_found() {
+        // the sheets the search leaves out must not hold a pair that meets: each such
+        // surface faces one way and is one piece, yet crosses itself
+        use super::super::sheets::tests::{fan_wound_twice, sheets_of, strip_through_itself};
+        for (name, mesh) in [
+            ("fan", fan_wound_twice()),
+            ("strip", strip_through_itself()),
+        ] {
+            let (welded, edges) = mesh.welded_edges();
+            let tol = 1e-9;
+            let truth = all_pairs(&mesh, &welded, tol);
+            assert!(!truth.is_empty(), "{name} crosses itself");
+            let sheet = sheets_of(&mesh, tol);
+            assert!(
+                truth
+                    .iter()
+                    .all(|p| sheet[p.0 as usize] == NONE
+                        || sheet[p.0 as usize] != sheet[p.1 as usize]),
+                "{name}: a pair that meets within one sheet"
+            );
+            // each triangle its own face: every cell is searched
+            let tri_face: Vec<u32> = (0..mesh.triangles.len() as u32).collect();
+            let found = PairSearch::new(&mesh, (&welded, &edges), &tri_face, None, tol, None)
+                .finish()
+                .0;
+            let key = |v: &[Pair]| v.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>();
+            assert_eq!(key(&found), key(&truth), "{name}");
+        }
     }
 
     #[test]
@@ -1055,9 +1152,9 @@ mod tests {
                 material_ids: vec![0; n],
                 rounding: 0.0,
             };
-            let welded = mesh.welded_ids();
+            let (welded, edges) = mesh.welded_edges();
             let tri_face = vec![0; n];
-            let mut search = PairSearch::new(&mesh, &welded, &tri_face, None, 1e-9, None);
+            let mut search = PairSearch::new(&mesh, (&welded, &edges), &tri_face, None, 1e-9, None);
             search.run_while(|| true);
             assert_eq!(search.next, 0, "{n} triangles");
             assert!(search.finish().0.is_empty());

@@ -35,6 +35,9 @@ pub(super) struct Level {
     /// Per cell, after [`LevelGrid::mark_faces`]: the one face all its triangles lie in,
     /// or [`MIXED`]; empty before.
     pub(super) face: Vec<u32>,
+    /// Per cell, after [`LevelGrid::mark_sheets`]: the one sheet all its triangles lie
+    /// in, or [`MIXED`]; empty before.
+    pub(super) sheet: Vec<u32>,
 }
 
 /// The level of grid (level 0's cell side `cell`, m) at which box `b` spans about
@@ -250,19 +253,31 @@ impl LevelGrid {
     /// can pass over ([`LevelGrid::cells_near`]).
     pub(super) fn mark_faces(&mut self, tri_face: &[u32]) {
         for level in &mut self.levels {
-            level.face = level
-                .start
-                .par_windows(2)
-                .map(|w| {
-                    let items = &level.binned[w[0] as usize..w[1] as usize];
-                    let first = items.first().map_or(MIXED, |&t| tri_face[t as usize]);
-                    if items.iter().all(|&t| tri_face[t as usize] == first) {
-                        first
-                    } else {
-                        MIXED
+            level.face = level.one_of(tri_face);
+        }
+    }
+
+    /// Per triangle: does it lie in a cell whose triangles lie in several faces (after
+    /// [`LevelGrid::mark_faces`])?
+    pub(super) fn in_mixed_cells(&self) -> Vec<bool> {
+        let mut mixed = vec![false; self.level.len()];
+        for level in &self.levels {
+            for (i, w) in level.start.windows(2).enumerate() {
+                if level.face[i] == MIXED {
+                    for &t in &level.binned[w[0] as usize..w[1] as usize] {
+                        mixed[t as usize] = true;
                     }
-                })
-                .collect();
+                }
+            }
+        }
+        mixed
+    }
+
+    /// Notes per cell the one sheet (`sheet`: per triangle, [`MIXED`] for none) all its
+    /// triangles lie in: no two of them meet as separate pieces.
+    pub(super) fn mark_sheets(&mut self, sheet: &[u32]) {
+        for level in &mut self.levels {
+            level.sheet = level.one_of(sheet);
         }
     }
 
@@ -281,5 +296,23 @@ impl LevelGrid {
                 });
             }
         }
+    }
+}
+
+impl Level {
+    /// Per cell, the one `label` (per triangle) all its triangles have, or [`MIXED`].
+    fn one_of(&self, label: &[u32]) -> Vec<u32> {
+        self.start
+            .par_windows(2)
+            .map(|w| {
+                let items = &self.binned[w[0] as usize..w[1] as usize];
+                let first = items.first().map_or(MIXED, |&t| label[t as usize]);
+                if items.iter().all(|&t| label[t as usize] == first) {
+                    first
+                } else {
+                    MIXED
+                }
+            })
+            .collect()
     }
 }

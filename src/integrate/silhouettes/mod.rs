@@ -65,6 +65,7 @@ mod polygon_tree;
 mod polygons;
 pub mod posed;
 mod rays;
+mod sheets;
 mod slab;
 mod sums;
 mod topology;
@@ -182,8 +183,9 @@ impl<'a> Silhouettes<'a> {
         // wait while the other renumbers them starts it, and both finish it beside the
         // edges and the polygons.
         let face_as_merged = faces.triangle_faces(mesh.triangles.len());
-        let welded = faces.welded_edges(mesh).0.into_owned();
-        let mut search = PairSearch::new(mesh, &welded, &face_as_merged, None, eps, grid);
+        let (welded, edges) = faces.welded_edges(mesh);
+        let (welded, edges) = (welded.into_owned(), edges.into_owned());
+        let mut search = PairSearch::new(mesh, (&welded, &edges), &face_as_merged, None, eps, grid);
         let renumbered = AtomicBool::new(false);
         rayon::join(
             || {

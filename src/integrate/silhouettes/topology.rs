@@ -117,10 +117,10 @@ impl Topology {
         // the edges and the contacts need only the welded mesh: found side by side (at
         // ~200k triangles each is tens of milliseconds, and the edges' steps run on one
         // thread)
-        let (welded, _) = faces.welded_edges(mesh);
+        let (welded, edges) = faces.welded_edges(mesh);
         let (topo, contacts) = rayon::join(
             || Topology::without_contacts(mesh, faces, tri_face, two_sided, tol),
-            || contact_segments(mesh, &welded, tri_face, group, tol, grid),
+            || contact_segments(mesh, (&welded, &edges), tri_face, group, tol, grid),
         );
         topo.with_contacts(contacts)
     }

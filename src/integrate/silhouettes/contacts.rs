@@ -162,6 +162,9 @@ pub(super) fn contact_segments(
 /// faces (sheets cost about as much a triangle as the search does an item of such a cell).
 const SHEETS_WORTH: usize = 8;
 
+// a triangle in no sheet and a cell of several sheets are the same label to the grid
+const _: () = assert!(NONE == MIXED);
+
 /// A segment (m) where two triangles meet: (lower index, higher index, segment).
 type Pair = (u32, u32, (DVec3, DVec3));
 

@@ -4,8 +4,7 @@
 //! changes across one along a direction ([`Contact::jump`]).
 
 use super::level_grid::{LevelGrid, MIXED};
-use super::sheets::sheets;
-use super::topology::NONE;
+use super::sheets::{sheets, NONE};
 use crate::geometry::faces::WeldedEdge;
 use crate::geometry::Mesh;
 use glam::DVec3;

@@ -17,10 +17,12 @@
 //! least angle and height, the rim's clearance from itself); a sheet that fails any is
 //! given up, its triangles searched as before.
 
-use super::topology::NONE;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::f64::consts::TAU;
+
+/// No sheet, or no triangle across an edge.
+pub(super) const NONE: u32 = u32::MAX;
 
 /// Least cosine between a triangle's normal and its sheet's axis (60°): well short of
 /// edge-on, so that each triangle seen along the axis keeps a sure winding.

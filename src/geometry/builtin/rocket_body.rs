@@ -124,6 +124,7 @@ fn profile(detail: Detail) -> (Vec<(f64, f64)>, Vec<u32>, u32) {
 mod tests {
     use super::super::checks::*;
     use super::*;
+    use crate::geometry::polygon::segment_distance;
     use glam::DVec2;
 
     #[test]
@@ -144,25 +145,6 @@ mod tests {
             let v = volume(&mesh);
             assert!((40.0..55.0).contains(&v), "{v}");
         }
-    }
-
-    /// Distance (m) between segments a–b and c–d of the (r, z) plane.
-    fn segment_distance(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> f64 {
-        let cross = |o: DVec2, p: DVec2, q: DVec2| (p - o).perp_dot(q - o);
-        let (d1, d2) = (cross(a, b, c), cross(a, b, d));
-        let (d3, d4) = (cross(c, d, a), cross(c, d, b));
-        if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
-            return 0.0;
-        }
-        let to_segment = |p: DVec2, a: DVec2, b: DVec2| {
-            let e = b - a;
-            let t = ((p - a).dot(e) / e.length_squared()).clamp(0.0, 1.0);
-            (p - (a + e * t)).length()
-        };
-        to_segment(a, c, d)
-            .min(to_segment(b, c, d))
-            .min(to_segment(c, a, b))
-            .min(to_segment(d, a, b))
     }
 
     #[test]

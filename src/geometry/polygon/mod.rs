@@ -3,7 +3,7 @@
 //!
 //! | concept | file |
 //! |---|---|
-//! | twice a polygon's signed area; whether a line passes through a box | here |
+//! | twice a polygon's signed area; whether a line passes through a box; the distance between two segments | here |
 //! | convex hulls, one monotone chain: a point set's ([`convex_hull`]), and a hull's corners and near-boundary points by index ([`HullIndices`]) | `hull.rs` |
 //! | the lit part of a face as disjoint convex pieces, shadows subtracted, and its area ([`Region`]) | `region/` |
 //! | cutting convex polygons: inward edges, a split along a line, where a piece lies against a polygon | `clip.rs` |
@@ -38,6 +38,33 @@ pub fn line_meets_box(a: DVec2, b: DVec2, lo: DVec2, hi: DVec2) -> bool {
     let n = (b - a).perp();
     let (centre, half) = ((lo + hi) * 0.5, (hi - lo) * 0.5);
     n.dot(centre - a).abs() <= n.abs().dot(half)
+}
+
+/// The least distance between segments p0–p1 and q0–q1 (m; 0 where they cross).
+pub fn segment_distance(p0: DVec2, p1: DVec2, q0: DVec2, q1: DVec2) -> f64 {
+    let orient = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
+    let (d1, d2) = (orient(p0, p1, q0), orient(p0, p1, q1));
+    let (d3, d4) = (orient(q0, q1, p0), orient(q0, q1, p1));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return 0.0;
+    }
+    // else the nearest points include an end of one of them
+    let to_segment = |x: DVec2, a: DVec2, b: DVec2| {
+        let e = b - a;
+        let l2 = e.length_squared();
+        let t = if l2 > 0.0 {
+            ((x - a).dot(e) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (a + e * t - x).length()
+    };
+    to_segment(p0, q0, q1)
+        .min(to_segment(p1, q0, q1))
+        .min(to_segment(q0, p0, p1))
+        .min(to_segment(q1, p0, p1))
 }
 
 #[cfg(test)]

@@ -17,6 +17,7 @@
 //! least angle and height, the rim's clearance from itself); a sheet that fails any is
 //! given up, its triangles searched as before.
 
+use crate::geometry::polygon::segment_distance;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::f64::consts::TAU;
@@ -326,32 +327,6 @@ fn simple_rim(rim: &[(u32, u32, DVec2, DVec2)], clear: f64) -> bool {
     true
 }
 
-/// The least distance between segments p0–p1 and q0–q1 (m).
-fn segment_distance(p0: DVec2, p1: DVec2, q0: DVec2, q1: DVec2) -> f64 {
-    let orient = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
-    let (d1, d2) = (orient(p0, p1, q0), orient(p0, p1, q1));
-    let (d3, d4) = (orient(q0, q1, p0), orient(q0, q1, p1));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
-        return 0.0;
-    }
-    let to_segment = |x: DVec2, a: DVec2, b: DVec2| {
-        let e = b - a;
-        let l2 = e.length_squared();
-        let t = if l2 > 0.0 {
-            ((x - a).dot(e) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (a + e * t - x).length()
-    };
-    to_segment(p0, q0, q1)
-        .min(to_segment(p1, q0, q1))
-        .min(to_segment(q0, p0, p1))
-        .min(to_segment(q1, p0, p1))
-}
-
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
@@ -371,30 +346,18 @@ pub(super) mod tests {
     }
 
     fn mesh(vertices: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Mesh {
-        let n = triangles.len();
         Mesh {
+            material_ids: vec![0; triangles.len()],
             vertices,
             triangles,
-            material_ids: vec![0; n],
-            rounding: 0.0,
+            ..Mesh::default()
         }
     }
 
-    /// A square of `n` × `n` quads in the plane z = 0, facing +z.
-    fn grid(n: u32) -> Mesh {
-        let at = |i: u32, j: u32| i * (n + 1) + j;
-        let vertices = (0..=n)
-            .flat_map(|i| (0..=n).map(move |j| DVec3::new(j as f64, i as f64, 0.0)))
-            .collect();
-        let triangles = (0..n)
-            .flat_map(|i| {
-                (0..n).flat_map(move |j| {
-                    let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
-                    [[a, b, c], [a, c, d]]
-                })
-            })
-            .collect();
-        mesh(vertices, triangles)
+    /// A 12 m square of 12 × 12 quads in the plane z = 0, facing +z (cell i + 12 j holds
+    /// triangles 2(i + 12 j) and the next).
+    fn square() -> Mesh {
+        crate::geometry::builtin::plate(12.0, 12.0, 12)
     }
 
     /// Twelve triangles about the origin whose far corners wind twice round it, the
@@ -433,12 +396,12 @@ pub(super) mod tests {
 
     #[test]
     fn a_flat_square_is_one_sheet_and_a_ball_is_all_in_sheets() {
-        let flat = sheets_of(&grid(12), 1e-9);
+        let flat = sheets_of(&square(), 1e-9);
         assert!(
             flat[0] != NONE && flat.iter().all(|&s| s == flat[0]),
             "{flat:?}"
         );
-        let mut ball = mesh(Vec::new(), Vec::new());
+        let mut ball = Mesh::default();
         super::super::fixtures::push_ball(&mut ball, 12, 0.3, DVec3::ZERO);
         let sheet = sheets_of(&ball, 1e-9);
         assert!(sheet.iter().all(|&s| s != NONE));
@@ -471,7 +434,7 @@ pub(super) mod tests {
     #[test]
     fn a_plate_with_a_hole_is_not_a_disc() {
         // the 12 × 12 square without its four middle quads
-        let mut m = grid(12);
+        let mut m = square();
         let keep: Vec<usize> = (0..m.triangles.len())
             .filter(|&t| {
                 let (i, j) = ((t / 2) / 12, (t / 2) % 12);

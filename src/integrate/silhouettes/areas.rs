@@ -35,11 +35,11 @@ pub(super) struct RayMemo {
     words: usize,
     /// The key of the point asked about last.
     key: Vec<u64>,
-    /// The regions answered: their keys (`words` each), each key folded into one word
-    /// (the key itself when it is one word), and whether they are open along the
-    /// direction.
-    keys: Vec<u64>,
+    /// The regions answered: each key folded into one word (the key itself when it is
+    /// one word), the keys in full when they are longer (`words` each), and whether the
+    /// regions are open along the direction.
     folded: Vec<u64>,
+    keys: Vec<u64>,
     answers: Vec<bool>,
 }
 
@@ -114,8 +114,10 @@ impl RayMemo {
             from = i + 1;
         }
         let open = ray();
-        self.keys.extend_from_slice(&self.key);
         self.folded.push(folded);
+        if words > 1 {
+            self.keys.extend_from_slice(&self.key);
+        }
         self.answers.push(open);
         open
     }

@@ -263,14 +263,7 @@ impl<'a> PairSearch<'a> {
         if paired.iter().filter(|&&p| p).count() * SHEETS_WORTH < paired.len() {
             return;
         }
-        let mesh = self.mesh;
-        self.sheet = sheets(
-            |t| mesh.corners(t),
-            &mesh.triangles,
-            (self.welded, self.edges),
-            &paired,
-            self.tol,
-        );
+        self.sheet = sheets(self.mesh, (self.welded, self.edges), &paired, self.tol);
         self.grid.mark_sheets(&self.sheet);
     }
 

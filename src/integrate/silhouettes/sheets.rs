@@ -17,7 +17,9 @@
 //! least angle and height, the rim's clearance from itself); a sheet that fails any is
 //! given up, its triangles searched as before.
 
+use crate::geometry::faces::WeldedEdge;
 use crate::geometry::polygon::segment_distance;
+use crate::geometry::Mesh;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 use std::f64::consts::TAU;
@@ -42,26 +44,21 @@ const MIN_HEIGHT: f64 = 8.0;
 /// Margin (rad) on the turn about a vertex.
 const TURN_TOL: f64 = 1e-6;
 
-/// Per triangle (`corners`, m; `triangles`: vertex indices; `welded`: each vertex's
-/// welded id; `edges`: the welded edges as (lower id, higher id, triangle), sorted, as
-/// [`crate::geometry::Mesh::welded_edges`] gives them), the sheet it lies in, or
-/// [`NONE`]; only triangles `wanted` are put in sheets. `tol` (m): distances within it
-/// count as touching; the rim of a sheet keeps well clear of itself.
+/// Per triangle of `mesh` (`welded`: each vertex's welded id; `edges`: the welded edges
+/// as (lower id, higher id, triangle), sorted, as [`Mesh::welded_edges`] gives them), the
+/// sheet it lies in, or [`NONE`]; only triangles `wanted` are put in sheets. `tol` (m):
+/// distances within it count as touching; the rim of a sheet keeps well clear of itself.
 pub(super) fn sheets(
-    corners: impl Fn(usize) -> [DVec3; 3] + Sync,
-    triangles: &[[u32; 3]],
-    (welded, edges): (&[u32], &[(u32, u32, u32)]),
+    mesh: &Mesh,
+    (welded, edges): (&[u32], &[WeldedEdge]),
     wanted: &[bool],
     tol: f64,
 ) -> Vec<u32> {
-    let n = triangles.len();
-    let ids = |t: usize| triangles[t].map(|v| welded[v as usize]);
+    let n = mesh.triangles.len();
+    let ids = |t: usize| mesh.triangles[t].map(|v| welded[v as usize]);
     let normal: Vec<DVec3> = (0..n)
         .into_par_iter()
-        .map(|t| {
-            let [a, b, c] = corners(t);
-            (b - a).cross(c - a).normalize_or_zero()
-        })
+        .map(|t| mesh.area_vector(t).normalize_or_zero())
         .collect();
     let across = neighbours(n, &ids, edges);
     // grown one after another, in triangle order: the same sheets on every run
@@ -114,9 +111,7 @@ pub(super) fn sheets(
                     fans.on_rim.resize(places, false);
                     fans.turn.resize(places, 0.0);
                 }
-                embedded(
-                    k as u32, tris, axis, &corners, &ids, &across, &sheet, tol, fans,
-                )
+                embedded(k as u32, tris, axis, mesh, &ids, &across, &sheet, tol, fans)
             })
     };
     let proven: Vec<bool> = (0..count as usize).into_par_iter().map(prove).collect();
@@ -130,11 +125,7 @@ pub(super) fn sheets(
 
 /// Per triangle, the triangle across each of its edges (corner k to k + 1) when exactly
 /// two triangles share that edge and wind opposite ways along it, else [`NONE`].
-fn neighbours(
-    n: usize,
-    ids: &impl Fn(usize) -> [u32; 3],
-    edges: &[(u32, u32, u32)],
-) -> Vec<[u32; 3]> {
+fn neighbours(n: usize, ids: &impl Fn(usize) -> [u32; 3], edges: &[WeldedEdge]) -> Vec<[u32; 3]> {
     let mut across = vec![[NONE; 3]; n];
     // the side of triangle t along edge (lo, hi): its index, and whether t runs lo → hi
     let side = |t: usize, lo: u32, hi: u32| {
@@ -193,7 +184,7 @@ fn embedded(
     here: u32,
     tris: &[u32],
     axis: DVec3,
-    corners: &impl Fn(usize) -> [DVec3; 3],
+    mesh: &Mesh,
     ids: &impl Fn(usize) -> [u32; 3],
     across: &[[u32; 3]],
     sheet: &[u32],
@@ -210,7 +201,7 @@ fn embedded(
     let mut vertices = 0i64;
     for &t in tris {
         let t = t as usize;
-        let c = corners(t).map(flat);
+        let c = mesh.corners(t).map(flat);
         let w = ids(t);
         for k in 0..3 {
             let u = across[t][k];
@@ -330,19 +321,12 @@ fn simple_rim(rim: &[(u32, u32, DVec2, DVec2)], clear: f64) -> bool {
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
-    use crate::geometry::Mesh;
 
     /// The sheets of every triangle of `mesh`.
     pub fn sheets_of(mesh: &Mesh, tol: f64) -> Vec<u32> {
         let (welded, edges) = mesh.welded_edges();
         let all = vec![true; mesh.triangles.len()];
-        sheets(
-            |t| mesh.corners(t),
-            &mesh.triangles,
-            (&welded, &edges),
-            &all,
-            tol,
-        )
+        sheets(mesh, (&welded, &edges), &all, tol)
     }
 
     fn mesh(vertices: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Mesh {

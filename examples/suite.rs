@@ -10,9 +10,13 @@
 //! keeps its first N epochs. A request that is missing or rejected is reported and its row
 //! skipped. Prints class, detail, triangles, faces, epochs, best and median total ms over
 //! `--repeat` runs, ms/epoch and epochs/s (of the best run), rays; `--out` writes the
-//! same as CSV (read by `--example suite_chart`).
+//! same as CSV (read by `--example suite_chart`). Built with `--features counters`, it
+//! also prints what each run's directions took (folds, lines, dirty patches, rays and the
+//! nodes they visit: `glint::integrate::silhouettes::tally`); take those with
+//! `--threads 1 --repeat 1`.
 
 use clap::Parser;
+use glint::integrate::silhouettes::tally;
 use glint::scene::{Limits, Scene};
 use std::time::Instant;
 
@@ -159,6 +163,7 @@ fn main() {
             let load_ms = t0.elapsed().as_secs_f64() * 1e3;
             let mut times = Vec::with_capacity(repeat);
             let mut summary = None;
+            tally::reset();
             for _ in 0..repeat {
                 let t = Instant::now();
                 let r = glint::simulate(&scene);
@@ -185,6 +190,9 @@ fn main() {
                 "{class} {detail}: {} triangles, {} epochs, best {:.1} ms",
                 row.triangles, row.epochs, row.best_ms
             );
+            if let Some(counts) = tally::report() {
+                eprintln!("{counts}");
+            }
             rows.push(row);
         }
     }

@@ -6,6 +6,7 @@
 //! would evaluate the face sum per spectral bin and weight by the bin's irradiance.
 
 use super::per_direction::Toward;
+use super::silhouettes::tally::{self, Tally};
 use super::silhouettes::{PatchLight, Silhouettes};
 use super::visibility::{FaceSide, Uncertain};
 use super::{Occlusion, Prepared};
@@ -256,6 +257,7 @@ fn lit_patches(
     scratch: &mut Scratch,
 ) -> f64 {
     let (v, es) = (dirs.view, dirs.sun_w_m2);
+    tally::add(Tally::Epochs, 1);
     scratch.lit_patches.clear();
     let mut unshadowed = 0.0;
     for k in 0..sil.patches() {
@@ -287,6 +289,7 @@ fn lit_patches(
                     area,
                     light,
                 };
+                tally::add(Tally::FacesInSums, faces.len() as u64);
                 if lp.lit_by() != (false, false) {
                     unshadowed += lp.light.of(sun) + lp.light.of(earth);
                     scratch.lit_patches.push(lp);
@@ -294,6 +297,7 @@ fn lit_patches(
                 continue;
             }
         }
+        tally::add(Tally::FacesOneByOne, faces.len() as u64);
         for &f in faces {
             let face = &p.faces.faces[f as usize];
             if let Some((side, sun, earth)) = face_terms(face, lights, v, es) {

@@ -8,6 +8,7 @@
 //! edge ([`super::patches`]).
 
 use super::patches::{Facing, Patches, RimEdge, MAX_FLAT_FACES};
+use super::tally::{add, Tally};
 use super::topology::{Edge, Topology, NONE};
 use glam::{DVec2, DVec3};
 
@@ -80,6 +81,9 @@ pub fn find(
     for p in 0..patches.len() {
         let fp = facing[p];
         if fp == Facing::Mixed {
+            add(Tally::MixedPatches, 1);
+            add(Tally::MixedFaces, patches.faces_of(p).len() as u64);
+            add(Tally::InnerEdges, patches.inner_of(p).len() as u64);
             for (s, &f) in side.iter_mut().zip(patches.faces_of(p)) {
                 *s = normal[f as usize].dot(d);
             }
@@ -103,6 +107,7 @@ pub fn find(
         if !patches.border[p] && patches.links_of(p).iter().all(|l| plain(l.patch)) {
             continue;
         }
+        add(Tally::RimEdges, patches.rim_of(p).len() as u64);
         for rim in patches.rim_of(p) {
             if !plain(rim.other) && passes(rim) {
                 fold(rim.edge);

@@ -69,6 +69,7 @@ mod rays;
 mod sheets;
 mod slab;
 mod sums;
+pub mod tally;
 mod topology;
 
 use super::per_direction::{PerDirection, Toward};
@@ -348,6 +349,32 @@ impl<'a> Silhouettes<'a> {
             self.receivers(dir, wanted, bit, p);
         }
         dir.rays = self.flood(dir);
+        if tally::ON {
+            self.tally(dir);
+        }
+    }
+
+    /// Adds what deciding `dir` took to the counts ([`tally`]).
+    fn tally(&self, dir: &Direction) {
+        use tally::{add, Tally};
+        add(Tally::Directions, 1);
+        add(Tally::Folds, dir.folds.len() as u64);
+        add(Tally::Lines, dir.lines.len() as u64);
+        for p in 0..self.patches.len() {
+            match dir.patch[p] {
+                PatchState::Clean => add(Tally::CleanPatches, 1),
+                PatchState::Dirty => {
+                    let faces = self.patches.faces_of(p);
+                    add(Tally::DirtyPatches, 1);
+                    add(Tally::DirtyFaces, faces.len() as u64);
+                    let crossed = faces.iter().filter(|&&f| {
+                        matches!(dir.face[f as usize], FaceState::Crossed | FaceState::Rays)
+                    });
+                    add(Tally::CrossedFaces, crossed.count() as u64);
+                }
+                PatchState::Off => {}
+            }
+        }
     }
 
     /// Rays that this epoch's counts took (for the summary's count).

@@ -11,6 +11,7 @@
 //! skipped whole: rays near a surface that faces them skip the surface.
 
 use super::polygons::Polygons;
+use super::tally::{add, Tally};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -195,10 +196,11 @@ impl Rays {
         // SAH_DEPTH + log2(polygons / LEAF), far below the stack's size
         let mut stack: [u32; 96] = [0; 96];
         let mut top = 1usize;
+        add(Tally::Rays, 1);
         while top > 0 {
             top -= 1;
             let node = &self.nodes[stack[top] as usize];
-
+            add(Tally::RayNodes, 1);
             if !node.open && node.axis.dot(d) < -node.sin_half - 1e-12 {
                 continue;
             }
@@ -212,6 +214,7 @@ impl Rays {
                 continue;
             }
             let s = node.start as usize;
+            add(Tally::RayLeafPolygons, u64::from(node.count));
             for &k in &self.prims[s..s + node.count as usize] {
                 let k = k as usize;
                 let f = polys.face[k];
@@ -229,6 +232,7 @@ impl Rays {
                     continue;
                 }
 
+                add(Tally::RayPlanes, 1);
                 let q = polys.to2(fi, x + d * t);
                 if hit(polys.corners2(k), q) {
                     return;

@@ -10,7 +10,8 @@
 /// What is counted (see [`report`] for how each is shown).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Tally {
-    /// Directions prepared (an epoch's view, Sun and Earth each count once).
+    /// Directions decided (an epoch's view, Sun and Earth each once; a direction kept
+    /// from the last epoch, a Sun fixed in the body frame, is not decided again).
     Directions,
     /// Patches facing both ways along a direction, their faces, and the edges inside
     /// them and on the patches' rims the fold search tested.

@@ -6,11 +6,11 @@
 //! open pieces, its patches and the contacts between its own pieces — is built once, in
 //! the reference pose, and each pose only moves it: points moved, normals, bases and
 //! cones turned. What crosses groups is found per pose: the contacts between a link and
-//! the body or another link ([`Across`]), the patches' boxes and the rays' hierarchy.
+//! the body or another link ([`GroupContacts`]), the patches' boxes and the rays' hierarchy.
 //! This holds while no two groups share a vertex (the caller checks each pose: a hinge
 //! welded to its parent along its line shares edges with it, and is prepared whole).
 
-use super::contacts::Across;
+use super::contacts::GroupContacts;
 use super::patches::Patches;
 use super::polygons::Polygons;
 use super::rays::Rays;
@@ -31,7 +31,7 @@ pub struct Reference {
     /// Its contacts only those within a group.
     topo: Topology,
     patches: Patches,
-    across: Across,
+    across: GroupContacts,
 }
 
 impl Reference {
@@ -56,7 +56,7 @@ impl Reference {
             .map(|p| group_of_face[patches.faces_of(p)[0] as usize])
             .collect();
         Reference {
-            across: Across::build(mesh, group, groups, eps),
+            across: GroupContacts::build(mesh, group, groups, eps),
             tri_face,
             group_of_face,
             group_of_patch,

@@ -121,6 +121,7 @@ pub fn evaluate(
     scratch: &mut Scratch,
     cancelled: &(dyn Fn() -> bool + Sync),
 ) -> (EpochResult, u64) {
+    let since = tally::now();
     let ill = &lighting.illumination;
     let range = epoch.observer.length();
     let light = EpochLight::at(ill, epoch);
@@ -133,7 +134,9 @@ pub fn evaluate(
     let lights = material_lights(lighting.materials, epoch, dirs.view, &light);
     let (decided, unshadowed) = lit_faces(p, &lights, &dirs, scratch);
     let (sums, rays) = visible_sums(p, &lights, &dirs, decided, unshadowed, scratch, cancelled);
-    (epoch_result(p, epoch, range, dirs.view, &light, sums), rays)
+    let result = epoch_result(p, epoch, range, dirs.view, &light, sums);
+    tally::took(Tally::EpochNs, since);
+    (result, rays)
 }
 
 /// Per material, what lights its faces at this epoch with what does not depend on the
@@ -364,6 +367,7 @@ fn visible_sums(
             sil.prepare(silhouettes, Toward::Sun, dirs.sunlit());
             sil.prepare(silhouettes, Toward::Earth, dirs.earth);
             let mut rays = sil.group_rays(silhouettes);
+            let since = tally::now();
             let face_areas = |scratch: &mut _, sums: &mut Sums, face: u32, sun, earth, area| {
                 let (a_sun, a_earth, n) =
                     sil.areas(scratch, face as usize, area, sun > 0.0, earth > 0.0);
@@ -398,6 +402,7 @@ fn visible_sums(
                     }
                 }
             }
+            tally::took(Tally::AreasNs, since);
             (sums, rays)
         }
         Occlusion::PerFace(vis) => {

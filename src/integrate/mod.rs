@@ -17,6 +17,7 @@ pub mod visibility;
 use crate::geometry::{convex, Faces};
 use crate::scene::{EpochResult, MaterialAlbedo, Method, Response, Scene, Summary};
 use rayon::prelude::*;
+use silhouettes::tally::{self, Tally};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::time::Instant;
 use visibility::{Visibility, VisibilityMode};
@@ -95,12 +96,18 @@ impl<'a> Prepared<'a> {
         // convex)
         let (mut faces, grid) = rayon::join(
             || {
-                let mut faces = Faces::build(&scene.mesh, !per_triangle);
-                faces.set_tangents(|m| scene.materials[m as usize].tangent);
-                faces.sort_spatially();
-                faces
+                tally::timed(Tally::FacesNs, || {
+                    let mut faces = Faces::build(&scene.mesh, !per_triangle);
+                    faces.set_tangents(|m| scene.materials[m as usize].tangent);
+                    faces.sort_spatially();
+                    faces
+                })
             },
-            || silhouettes.then(|| silhouettes::Silhouettes::contact_grid(&scene.mesh)),
+            || {
+                tally::timed(Tally::TriangleGridNs, || {
+                    silhouettes.then(|| silhouettes::Silhouettes::contact_grid(&scene.mesh))
+                })
+            },
         );
         let convex = is_convex(scene, &faces);
         let occlusion = match scene.method {

@@ -7,6 +7,7 @@ use super::folds::Fold;
 use super::lines::{self, Across, Line, LineGrid};
 use super::patches::Facing;
 use super::slab::SlabAlong;
+use super::tally::{self, Tally};
 use super::Silhouettes;
 use crate::geometry::polygon;
 use glam::{DVec2, DVec3};
@@ -155,22 +156,26 @@ impl Silhouettes<'_> {
             true => self.patches.slab[p].along(dir.across.d, self.tol),
             false => None,
         };
-        self.folds_above(dir, p, slab.as_ref());
+        tally::timed(Tally::QueriesNs, || self.folds_above(dir, p, slab.as_ref()));
         if whole && dir.near.is_empty() && !self.patches.contacts[p] {
             dir.patch[p] = PatchState::Clean;
             return;
         }
         dir.patch[p] = PatchState::Dirty;
+        let since = tally::now();
         let (plo, phi) = self.footprints(dir, wanted, bit, faces);
         let folds = &dir.folds;
         dir.near.retain(|n| {
             !(n.lo.cmpgt(phi).any() || n.hi.cmplt(plo).any())
                 && line_meets_box(&folds[n.fold as usize], plo, phi)
         });
+        tally::took(Tally::FootprintsNs, since);
+        let since = tally::now();
         for i in 0..dir.footprint.len() {
             let fp = dir.footprint[i];
             self.classify(dir, &fp);
         }
+        tally::took(Tally::FaceLinesNs, since);
         // Folds pass over the patch's box but no line crosses any of its faces: nothing
         // folds inside a patch that faces one way, so its count is one all over, as if
         // no fold were above it. Its faces then flood as one unit (on a tumbling box-wing,
@@ -201,20 +206,25 @@ impl Silhouettes<'_> {
         let (folds, stamp, near) = (&dir.folds, &mut dir.stamp, &mut dir.near);
         let (plo, phi) = (at - half, at + half);
         dir.grid.query(plo, phi, |i| {
+            tally::add(Tally::QueryFolds, 1);
             let iu = i as usize;
             if stamp[iu] == query {
+                tally::add(Tally::QueryAgain, 1);
                 return;
             }
             stamp[iu] = query;
             let fold = &folds[iu];
             if fold.top <= bottom {
+                tally::add(Tally::QueryBelow, 1);
                 return;
             }
             let (lo, hi) = (fold.pa.min(fold.pb), fold.pa.max(fold.pb));
             if lo.cmpgt(phi).any() || hi.cmplt(plo).any() || !line_meets_box(fold, plo, phi) {
+                tally::add(Tally::QueryOffBox, 1);
                 return;
             }
             if slab.is_some_and(|s| !s.may_shade(fold.a, fold.b)) {
+                tally::add(Tally::QueryOffSlab, 1);
                 return;
             }
             near.push(Near {
@@ -326,6 +336,7 @@ impl Silhouettes<'_> {
                 | (n.hi.x < lo.x)
                 | (n.hi.y < lo.y)
         };
+        tally::add(Tally::NearScanned, near.len() as u64);
         let Some(first) = near
             .iter()
             .position(|n| !misses(n, fp.lo, fp.hi, fp.bottom))
@@ -352,6 +363,7 @@ impl Silhouettes<'_> {
             if misses(n, lo, hi, bottom) {
                 continue;
             }
+            tally::add(Tally::NearTested, 1);
             if let Some(line) =
                 lines::crossing(&self.polys, &receiver, &folds[n.fold as usize], &across)
             {

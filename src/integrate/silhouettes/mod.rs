@@ -87,6 +87,7 @@ use polygons::Polygons;
 use rays::Rays;
 use std::sync::atomic::{AtomicBool, Ordering};
 pub use sums::PatchLight;
+use tally::Tally;
 use topology::Topology;
 
 /// Most cells a face is cut into before it is sampled instead.
@@ -177,6 +178,7 @@ impl<'a> Silhouettes<'a> {
         grid: Option<TriangleGrid>,
         arrange: impl FnOnce(&mut Faces) + Send,
     ) -> Silhouettes<'a> {
+        tally::add(Tally::Preparations, 1);
         let mesh = &scene.mesh;
         // the height above a face that counts as in front of it: rounding, not geometry
         let eps = mesh.tolerance();
@@ -191,10 +193,10 @@ impl<'a> Silhouettes<'a> {
         let renumbered = AtomicBool::new(false);
         rayon::join(
             || {
-                arrange(faces);
+                tally::timed(Tally::RenumberNs, || arrange(faces));
                 renumbered.store(true, Ordering::Relaxed);
             },
-            || search.run_until(&renumbered),
+            || tally::timed(Tally::ContactSearchNs, || search.run_until(&renumbered)),
         );
         let faces = &*faces;
         let (tri_face, two_sided) = face_tables(scene, faces);
@@ -203,16 +205,24 @@ impl<'a> Silhouettes<'a> {
         let ((topo, pairs), polys) = rayon::join(
             || {
                 rayon::join(
-                    || Topology::without_contacts(mesh, faces, &tri_face, &two_sided, eps),
-                    || search.finish(),
+                    || {
+                        tally::timed(Tally::TopologyNs, || {
+                            Topology::without_contacts(mesh, faces, &tri_face, &two_sided, eps)
+                        })
+                    },
+                    || tally::timed(Tally::ContactSearchNs, || search.finish()),
                 )
             },
-            || Polygons::build(mesh, faces, two_sided.clone(), eps),
+            || {
+                tally::timed(Tally::PolygonsNs, || {
+                    Polygons::build(mesh, faces, two_sided.clone(), eps)
+                })
+            },
         );
         let topo = topo.with_contacts(pairs.on_faces(mesh, &tri_face, eps));
         let (patches, rays) = rayon::join(
-            || Patches::build(&polys, &topo),
-            || Rays::build(&polys, &topo.open),
+            || tally::timed(Tally::PatchesNs, || Patches::build(&polys, &topo)),
+            || tally::timed(Tally::RaysTreeNs, || Rays::build(&polys, &topo.open)),
         );
         Silhouettes::assemble(mesh, faces, (polys, topo, patches, rays), eps)
     }
@@ -317,6 +327,7 @@ impl<'a> Silhouettes<'a> {
         dir.facing.clear();
         dir.facing
             .extend((0..np).map(|p| self.patches.facing(p, d)));
+        let since = tally::now();
         folds::find(
             &self.patches,
             &self.topo,
@@ -328,8 +339,11 @@ impl<'a> Silhouettes<'a> {
             |f| self.blocks(f as usize, d),
             &mut dir.folds,
         );
+        tally::took(Tally::FoldSearchNs, since);
+        let since = tally::now();
         dir.mark_folds(self.topo.edges.len());
         dir.grid.build(&dir.folds, self.tol);
+        tally::took(Tally::FoldGridNs, since);
         dir.stamp.clear();
         dir.stamp.resize(dir.folds.len(), 0);
         dir.query = 0;
@@ -348,7 +362,7 @@ impl<'a> Silhouettes<'a> {
             }
             self.receivers(dir, wanted, bit, p);
         }
-        dir.rays = self.flood(dir);
+        dir.rays = tally::timed(Tally::FloodNs, || self.flood(dir));
         if tally::ON {
             self.tally(dir);
         }
@@ -356,7 +370,7 @@ impl<'a> Silhouettes<'a> {
 
     /// Adds what deciding `dir` took to the counts ([`tally`]).
     fn tally(&self, dir: &Direction) {
-        use tally::{add, Tally};
+        use tally::add;
         add(Tally::Directions, 1);
         add(Tally::Folds, dir.folds.len() as u64);
         add(Tally::Lines, dir.lines.len() as u64);

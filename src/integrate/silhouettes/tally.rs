@@ -54,9 +54,9 @@ pub enum Tally {
     NearScanned,
     NearTested,
     /// Time (ns) per direction: the fold search, the folds' grid, the patches' queries
-    /// for folds, the dirty patches' footprints, their faces' lines, the flood of
-    /// counts; per epoch: the areas of lit and seen faces (the crossed ones cut into
-    /// cells) and the whole epoch.
+    /// for folds, the dirty patches' footprints (and their near folds narrowed to them),
+    /// their faces' lines, the flood of counts (its rays included); per epoch: the areas
+    /// of lit and seen faces (the crossed ones cut into cells) and the whole epoch.
     FoldSearchNs,
     FoldGridNs,
     QueriesNs,

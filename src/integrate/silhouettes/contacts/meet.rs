@@ -11,7 +11,7 @@ use glam::DVec3;
 /// else, but a plate whose edge is welded to the centre of a cap it stands on meets
 /// the cap along a line from that corner); two that share an edge never (neighbours
 /// along it: the topology's).
-pub(in crate::integrate::silhouettes) fn meeting(
+pub(super) fn meeting(
     mesh: &Mesh,
     welded: &[u32],
     s: usize,
@@ -23,7 +23,7 @@ pub(in crate::integrate::silhouettes) fn meeting(
 
 /// A triangle as [`meeting_of`] reads it: its corners (m) and their welded ids.
 #[derive(Clone, Copy)]
-pub(in crate::integrate::silhouettes) struct Tri {
+pub(super) struct Tri {
     pub(super) c: [DVec3; 3],
     pub(super) w: [u32; 3],
 }
@@ -40,11 +40,7 @@ impl Tri {
 
 /// [`meeting`] of two triangles read already.
 #[inline]
-pub(in crate::integrate::silhouettes) fn meeting_of(
-    s: &Tri,
-    t: &Tri,
-    tol: f64,
-) -> Option<(DVec3, DVec3)> {
+pub(super) fn meeting_of(s: &Tri, t: &Tri, tol: f64) -> Option<(DVec3, DVec3)> {
     let mut shared = (0..3).filter(|&i| t.w.contains(&s.w[i]));
     let (first, second) = (shared.next(), shared.next());
     if second.is_some() {
@@ -87,7 +83,7 @@ pub(in crate::integrate::silhouettes) fn meeting_of(
 
 /// The sine of the angle between the planes of triangles `s` and `t` (corners, m); 0
 /// for a degenerate one.
-pub(in crate::integrate::silhouettes) fn sin_between(s: &[DVec3; 3], t: &[DVec3; 3]) -> f64 {
+pub(super) fn sin_between(s: &[DVec3; 3], t: &[DVec3; 3]) -> f64 {
     let (ns, nt) = (
         (s[1] - s[0]).cross(s[2] - s[0]),
         (t[1] - t[0]).cross(t[2] - t[0]),
@@ -103,7 +99,7 @@ pub(in crate::integrate::silhouettes) fn sin_between(s: &[DVec3; 3], t: &[DVec3;
 /// The segment where triangles `a` and `b` meet (touching within `tol` counts), when it
 /// is longer than `tol`; coplanar triangles are left out (nothing in a face's plane
 /// shades it).
-pub fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> {
+pub(super) fn meet(a: &[DVec3; 3], b: &[DVec3; 3], tol: f64) -> Option<(DVec3, DVec3)> {
     let na = (a[1] - a[0]).cross(a[2] - a[0]).normalize_or_zero();
     let nb = (b[1] - b[0]).cross(b[2] - b[0]).normalize_or_zero();
     // most pairs that get here are neighbours on one smooth surface, one wholly on one

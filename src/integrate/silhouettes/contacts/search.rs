@@ -22,7 +22,7 @@ const SHEETS_WORTH: usize = 8;
 const _: () = assert!(NONE == MIXED);
 
 /// A segment (m) where two triangles meet: (lower index, higher index, segment).
-pub(in crate::integrate::silhouettes) type Pair = (u32, u32, (DVec3, DVec3));
+type Pair = (u32, u32, (DVec3, DVec3));
 
 /// The search for the pairs of triangles that meet as separate pieces, taken a piece of
 /// work at a time (a cell of the grid, then a triangle against the coarser levels) so

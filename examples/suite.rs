@@ -12,8 +12,8 @@
 //! `--repeat` runs, ms/epoch and epochs/s (of the best run), rays; `--out` writes the
 //! same as CSV (read by `--example suite_chart`). Built with `--features counters`, it
 //! also prints what each run's directions took (folds, lines, dirty patches, rays and the
-//! nodes they visit: `glint::integrate::silhouettes::tally`); take those with
-//! `--threads 1 --repeat 1`.
+//! nodes they visit) and the time of each step of a direction, an epoch and a preparation
+//! (`glint::integrate::silhouettes::tally`); take those with `--threads 1 --repeat 1`.
 
 use clap::Parser;
 use glint::integrate::silhouettes::tally;

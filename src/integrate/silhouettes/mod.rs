@@ -65,6 +65,7 @@ mod patches;
 mod polygon_tree;
 mod polygons;
 pub mod posed;
+mod ray_memo;
 mod rays;
 mod sheets;
 mod slab;
@@ -129,7 +130,7 @@ pub struct Scratch {
     cells: Cells,
     cutter: Cutter,
     /// Per direction: ray answers shared between a face's cells.
-    memo: PerDirection<areas::RayMemo>,
+    memo: PerDirection<ray_memo::RayMemo>,
     lines: Vec<(DVec2, DVec2)>,
 }
 

@@ -135,6 +135,10 @@ impl Silhouettes<'_> {
             };
             return (lit(Toward::Sun), lit(Toward::Earth), 0);
         }
+        if let Some((a_sun, a_earth)) = self.seen_then_lit(scratch, face, &status) {
+            let lit = |k: Toward, a: f64| if want[k] { a } else { 0.0 };
+            return (lit(Toward::Sun, a_sun), lit(Toward::Earth, a_earth), 0);
+        }
         let whole = self.cut_into_cells(scratch, face, &status);
         let (cells, dirs, memo) = (&scratch.cells, &scratch.dirs, &mut scratch.memo);
         for k in Toward::ALL {
@@ -165,6 +169,94 @@ impl Silhouettes<'_> {
         }
         let lit = |k: Toward, a: f64| if want[k] { a } else { 0.0 };
         (lit(Toward::Sun, a_sun), lit(Toward::Earth, a_earth), rays)
+    }
+
+    /// The areas (m²) of one-polygon `face` seen and sunlit, and seen and earthlit, when
+    /// counts decide the view and a light cuts it too: the face is cut by the view's
+    /// lines alone, and only the cells seen are cut by the lights' lines, so that the
+    /// part hidden is not cut finer by shadows no one sees. `None` where this does not
+    /// apply (rays decide a direction, the face has several polygons or few lines) or
+    /// where the cells would exceed [`MAX_CELLS`].
+    fn seen_then_lit(
+        &self,
+        scratch: &mut Scratch,
+        face: usize,
+        status: &PerDirection<Status>,
+    ) -> Option<(f64, f64)> {
+        let lights_cut = status.sun.cuts() || status.earth.cuts();
+        if status.view != Status::Counted
+            || !lights_cut
+            || status.iter().any(|&s| s == Status::Rays)
+            || self.polys.of(face).len() != 1
+        {
+            return None;
+        }
+        let Scratch {
+            dirs,
+            cells,
+            cutter,
+            lines,
+            ..
+        } = scratch;
+        let bounding = |k: Toward| {
+            dirs[k]
+                .lines_of(face)
+                .iter()
+                .filter(|l| l.bounds)
+                .map(|l| (l.p, l.q))
+        };
+        lines.clear();
+        lines.extend(bounding(Toward::View));
+        let seen_by = lines.len();
+        for k in [Toward::Sun, Toward::Earth] {
+            if status[k].cuts() {
+                lines.extend(bounding(k));
+            }
+        }
+        // a few lines are split along whole, all at once (`cut_into_cells`)
+        if lines.len() <= FEW_LINES {
+            return None;
+        }
+        let (view_lines, light_lines) = lines.split_at(seen_by);
+        let count_zero = |k: Toward, q: DVec2| {
+            let dir = &dirs[k];
+            dir.face_count[face] + lines::crossed(dir.lines_of(face), dir.face_ref[face], q) == 0
+        };
+        let open = |k: Toward, q: DVec2| match status[k] {
+            Status::Clear => true,
+            Status::Dark => false,
+            _ => count_zero(k, q),
+        };
+        let tol = self.tol;
+        cells.clear();
+        let poly = self.polys.corners2(self.polys.of(face).start);
+        let mut made = 0;
+        let complete = cutter.cut(poly, view_lines, tol, MAX_CELLS, |c| {
+            made += 1;
+            let (a, q) = area_centroid(c);
+            if a > 0.0 && count_zero(Toward::View, q) {
+                cells.push(c.iter().copied());
+            }
+        });
+        if !complete {
+            return None;
+        }
+        let (mut a_sun, mut a_earth) = (0.0, 0.0);
+        for i in 0..cells.len() {
+            let room = MAX_CELLS.checked_sub(made)?;
+            let complete = cutter.cut(cells.cell(i), light_lines, tol, room, |c| {
+                made += 1;
+                let (a, q) = area_centroid(c);
+                if a > 0.0 {
+                    a_sun += if open(Toward::Sun, q) { a } else { 0.0 };
+                    a_earth += if open(Toward::Earth, q) { a } else { 0.0 };
+                }
+            });
+            if !complete {
+                return None;
+            }
+        }
+        Some((a_sun, a_earth))
     }
 
     /// Cuts `face` into `scratch.cells` by the bounding lines of the directions that

@@ -355,19 +355,27 @@ mod tests {
         assert_eq!(rays, 3, "no sharing on a face that is not convex");
     }
 
+    /// Corner `i` of a regular `n`-gon inscribed in the unit circle.
+    fn on_circle(i: usize, n: usize) -> DVec2 {
+        let t = std::f64::consts::TAU * i as f64 / n as f64;
+        DVec2::new(t.cos(), t.sin())
+    }
+
+    /// The sides of that `n`-gon: a ring of contacts round a boom's foot.
+    fn ring(n: usize) -> Vec<(DVec2, DVec2)> {
+        (0..n)
+            .map(|i| (on_circle(i, n), on_circle(i + 1, n)))
+            .collect()
+    }
+
     #[test]
     fn the_cells_inside_a_ring_of_a_hundred_contacts_share_one_ray() {
         // a boom's foot: 100 contacts round a circle on a convex face, more than one
         // 64-bit word of sides; every point inside the ring lies on the inner side of
         // each contact's whole line, one region
         let n = 100;
-        let at = |i: usize| {
-            let t = std::f64::consts::TAU * i as f64 / n as f64;
-            DVec2::new(t.cos(), t.sin())
-        };
-        let ring: Vec<(DVec2, DVec2)> = (0..n).map(|i| (at(i), at(i + 1))).collect();
         let mut memo = RayMemo::default();
-        memo.reset(true, std::iter::empty(), ring.iter().copied(), 1e-9);
+        memo.reset(true, std::iter::empty(), ring(n).into_iter(), 1e-9);
         assert_eq!(memo.words, 2);
         let mut rays = 0;
         for k in 0..50 {
@@ -381,7 +389,7 @@ mod tests {
         assert_eq!(rays, 1, "one ray inside the ring");
         // outside it, beyond one contact (the 70th: in the second word) and beyond its
         // opposite: the ring between them, two more rays and answers
-        let beyond = |i: usize| (at(i) + at(i + 1)) * 0.6;
+        let beyond = |i: usize| (on_circle(i, n) + on_circle(i + 1, n)) * 0.6;
         for (q, open) in [(beyond(70), true), (beyond(20), true), (beyond(70), true)] {
             assert_eq!(
                 memo.open(q, || {
@@ -401,13 +409,8 @@ mod tests {
         // ring, each point has a key of its own, yet a straight step to the last one
         // passes no contact
         let n = 48;
-        let at = |i: usize| {
-            let t = std::f64::consts::TAU * i as f64 / n as f64;
-            DVec2::new(t.cos(), t.sin())
-        };
-        let ring: Vec<(DVec2, DVec2)> = (0..n).map(|i| (at(i), at(i + 1))).collect();
         let mut memo = RayMemo::default();
-        memo.reset(true, std::iter::empty(), ring.iter().copied(), 1e-9);
+        memo.reset(true, std::iter::empty(), ring(n).into_iter(), 1e-9);
         let mut rays = 0;
         for k in 0..4 * n {
             let t = std::f64::consts::TAU * k as f64 / (4 * n) as f64;

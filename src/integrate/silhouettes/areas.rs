@@ -147,7 +147,6 @@ impl Silhouettes<'_> {
                     self.polys.convex[face],
                     dirs[k].lines_of(face).iter(),
                     self.contact_segments(face),
-                    self.margin(face),
                 );
             }
         }

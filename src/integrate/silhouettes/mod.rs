@@ -45,8 +45,8 @@
 //! reference count plus the jumps of the lines between them: no ray (the view's lines cut
 //! first, and only the cells seen cut by the lights'). Only the cells of a face a contact
 //! runs through are decided by rays (the count does not follow the sheets there), cut
-//! along every contact, a ray's answer shared by the cells a straight path reaches
-//! without passing the direction's lines or the face's contacts ([`ray_memo`]). Nothing is
+//! along every contact, one ray per region of each direction's own lines and the face's
+//! contacts ([`ray_memo`]). Nothing is
 //! recognised by shape: a convex mesh has no fold above any face and is one clean
 //! region (one ray a direction); a dish, a bell in a skirt or a crumpled fragment cost
 //! what their fold lines cost. The areas are exact up to

@@ -7,7 +7,7 @@ use super::cells::{area_centroid, crosses};
 use super::direction::{Direction, FaceState, PatchState};
 use super::polygon_tree::Visit;
 use super::ray_memo::{push_new, RayMemo};
-use super::{lines, Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
+use super::{Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
 use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::DVec2;
 
@@ -125,6 +125,7 @@ impl Silhouettes<'_> {
         if status.view == Status::Dark {
             return (0.0, 0.0, 0);
         }
+        let if_wanted = |k: Toward, a: f64| if want[k] { a } else { 0.0 };
         if !status.iter().any(|s| s.cuts()) {
             let lit = |k: Toward| {
                 if want[k] && status[k] == Status::Clear {
@@ -136,8 +137,11 @@ impl Silhouettes<'_> {
             return (lit(Toward::Sun), lit(Toward::Earth), 0);
         }
         if let Some((a_sun, a_earth)) = self.seen_then_lit(scratch, face, &status) {
-            let lit = |k: Toward, a: f64| if want[k] { a } else { 0.0 };
-            return (lit(Toward::Sun, a_sun), lit(Toward::Earth, a_earth), 0);
+            return (
+                if_wanted(Toward::Sun, a_sun),
+                if_wanted(Toward::Earth, a_earth),
+                0,
+            );
         }
         let whole = self.cut_into_cells(scratch, face, &status);
         let (cells, dirs, memo) = (&scratch.cells, &scratch.dirs, &mut scratch.memo);
@@ -166,8 +170,11 @@ impl Silhouettes<'_> {
         } else {
             (a_sun, a_earth) = self.sampled(face, &mut decide);
         }
-        let lit = |k: Toward, a: f64| if want[k] { a } else { 0.0 };
-        (lit(Toward::Sun, a_sun), lit(Toward::Earth, a_earth), rays)
+        (
+            if_wanted(Toward::Sun, a_sun),
+            if_wanted(Toward::Earth, a_earth),
+            rays,
+        )
     }
 
     /// The areas (m²) of one-polygon `face` seen and sunlit, and seen and earthlit, when
@@ -197,19 +204,12 @@ impl Silhouettes<'_> {
             lines,
             ..
         } = scratch;
-        let bounding = |k: Toward| {
-            dirs[k]
-                .lines_of(face)
-                .iter()
-                .filter(|l| l.bounds)
-                .map(|l| (l.p, l.q))
-        };
         lines.clear();
-        lines.extend(bounding(Toward::View));
+        lines.extend(dirs.view.bounding_lines(face));
         let seen_by = lines.len();
         for k in [Toward::Sun, Toward::Earth] {
             if status[k].cuts() {
-                lines.extend(bounding(k));
+                lines.extend(dirs[k].bounding_lines(face));
             }
         }
         // a few lines are split along whole, all at once (`cut_into_cells`)
@@ -217,14 +217,10 @@ impl Silhouettes<'_> {
             return None;
         }
         let (view_lines, light_lines) = lines.split_at(seen_by);
-        let count_zero = |k: Toward, q: DVec2| {
-            let dir = &dirs[k];
-            dir.face_count[face] + lines::crossed(dir.lines_of(face), dir.face_ref[face], q) == 0
-        };
         let open = |k: Toward, q: DVec2| match status[k] {
             Status::Clear => true,
             Status::Dark => false,
-            _ => count_zero(k, q),
+            _ => dirs[k].counts_none_at(face, q),
         };
         let tol = self.tol;
         cells.clear();
@@ -233,7 +229,7 @@ impl Silhouettes<'_> {
         let complete = cutter.cut(poly, view_lines, tol, MAX_CELLS, |c| {
             made += 1;
             let (a, q) = area_centroid(c);
-            if a > 0.0 && count_zero(Toward::View, q) {
+            if a > 0.0 && dirs.view.counts_none_at(face, q) {
                 cells.push(c.iter().copied());
             }
         });
@@ -274,12 +270,7 @@ impl Silhouettes<'_> {
             .zip(status.iter())
             .filter(|(_, s)| s.cuts())
         {
-            scratch.lines.extend(
-                dir.lines_of(face)
-                    .iter()
-                    .filter(|l| l.bounds)
-                    .map(|l| (l.p, l.q)),
-            );
+            scratch.lines.extend(dir.bounding_lines(face));
         }
         // and along every contact of the face, whatever its jump: where rays decide the
         // cells, each must lie on one side of every place another piece meets the face
@@ -368,11 +359,7 @@ impl Silhouettes<'_> {
             open[k] = match status[k] {
                 Status::Clear => true,
                 Status::Dark => false,
-                Status::Counted => {
-                    let dir = &dirs[k];
-                    dir.face_count[face] + lines::crossed(dir.lines_of(face), dir.face_ref[face], q)
-                        == 0
-                }
+                Status::Counted => dirs[k].counts_none_at(face, q),
                 Status::Rays => memo[k].open(q, || {
                     *rays += 1;
                     let d = dirs[k].across.d;

@@ -140,6 +140,22 @@ impl Direction {
         let (a, b) = self.face_lines[f];
         &self.lines[a as usize..b as usize]
     }
+
+    /// Face `f`'s lines that can bound light, as segments in its plane's coordinates (m).
+    #[inline]
+    pub(super) fn bounding_lines(&self, f: usize) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
+        self.lines_of(f)
+            .iter()
+            .filter(|l| l.bounds)
+            .map(|l| (l.p, l.q))
+    }
+
+    /// Does point `q` of crossed face `f` (its plane's coordinates) see out along this
+    /// direction: its reference count plus the jumps of the lines on the way, zero?
+    #[inline]
+    pub(super) fn counts_none_at(&self, f: usize, q: DVec2) -> bool {
+        self.face_count[f] + lines::crossed(self.lines_of(f), self.face_ref[f], q) == 0
+    }
 }
 
 impl Silhouettes<'_> {

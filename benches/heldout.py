@@ -3,6 +3,7 @@
 files and tumbling requests, to check that speed holds beyond the suite's classes.
 
     python3 benches/heldout.py [--out DIR] [--decimals N | --digits N | --f32 full|shortest|nine]
+    python3 benches/heldout.py --fixture tests/fixtures/heldout-cluster.json
 
 Writes DIR/NAME.obj and DIR/NAME.json (the OBJ text inline, sunlight alone) for
 - torus: a smooth ring that shades itself (R 1 m, r 0.38 m), 20,000 triangles;
@@ -134,14 +135,42 @@ def turn(rng):
             [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
 
 
-def cluster():
+def cluster_boxes():
+    """The cluster's 28 boxes (seeded): (centre, half-sizes, turning matrix) each."""
     rng = random.Random(7)
-    V, T = [], []
+    boxes = []
     for _ in range(28):
         c = [rng.uniform(-0.9, 0.9) for _ in range(3)]
         half = [rng.uniform(0.1, 0.5) for _ in range(3)]
-        box(V, T, c, half, 8, turn(rng))
+        boxes.append((c, half, turn(rng)))
+    return boxes
+
+
+def cluster():
+    V, T = [], []
+    for c, half, rot in cluster_boxes():
+        box(V, T, c, half, 8, rot)
     return V, T
+
+
+def epochs():
+    """The tumbling epochs every held-out request asks for."""
+    return tumbling([0.2, -0.6, 0.77], [1.0, 0.0, 0.0], 261, 20.0, 150.0, 1.2e6, 7.178e6, 1.0,
+                    spin_axis=[0.3, 0.8, 0.5], momentum=[-0.2, 0.4, 0.89], nutation_deg=35.0,
+                    spin_deg=5.0, precession_deg=2.0)
+
+
+def write_fixture(path):
+    """The cluster as tests/silhouette.rs builds it: its boxes and its epochs, not its
+    triangles (the test lays each side out as an 8 x 8 grid, as `box` does)."""
+    fixture = {
+        "made_by": "benches/heldout.py --fixture (the held-out cluster: seed 7, 28 boxes)",
+        "boxes": [{"centre": c, "half": half, "turn": rot} for c, half, rot in cluster_boxes()],
+        "epochs": epochs(),
+    }
+    with open(path, "w") as f:
+        json.dump(fixture, f, indent=None, separators=(",", ":"))
+        f.write("\n")
 
 
 def obj_text(V, T, write):
@@ -154,8 +183,14 @@ def obj_text(V, T, write):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", default="target/heldout")
+    ap.add_argument("--fixture", metavar="PATH",
+                    help="write only the cluster's boxes and epochs, as tests/silhouette.rs reads them")
     add_writing(ap, decimals=9)
     args = ap.parse_args()
+    if args.fixture:
+        write_fixture(args.fixture)
+        print("wrote", args.fixture)
+        return
     write = writer(args)
     os.makedirs(args.out, exist_ok=True)
     for name, build in [("torus", torus), ("truss", truss), ("station", station), ("cluster", cluster)]:
@@ -165,9 +200,7 @@ def main():
             f.write(text)
         request = {
             "object": {"mesh": {"obj": text}, "materials": [MATERIAL]},
-            "epochs": tumbling([0.2, -0.6, 0.77], [1.0, 0.0, 0.0], 261, 20.0, 150.0, 1.2e6, 7.178e6, 1.0,
-                               spin_axis=[0.3, 0.8, 0.5], momentum=[-0.2, 0.4, 0.89], nutation_deg=35.0,
-                               spin_deg=5.0, precession_deg=2.0),
+            "epochs": epochs(),
             "illumination": {"band_um": [0.4, 0.7], "sun_temperature_k": 5900, "earthshine": "off"},
             "tolerance": 1e-3,
         }

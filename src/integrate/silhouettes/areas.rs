@@ -155,20 +155,33 @@ impl Silhouettes<'_> {
             }
         }
         let mut rays = 0u64;
-        let mut decide = |q: DVec2| self.decide(dirs, &status, face, q, memo, &mut rays);
+        let mut decide =
+            |q: DVec2, share: bool| self.decide(dirs, &status, face, (q, share), memo, &mut rays);
         let (mut a_sun, mut a_earth) = (0.0, 0.0);
         if whole {
-            let shaped = (0..cells.len()).map(|i| area_centroid(cells.cell(i)));
-            for (a, c) in shaped.chain(cells.wholes.iter().copied()) {
+            // A cell's centroid lies within the margin of a line it was cut along only if
+            // the cell is a sliver no wider than three margins (a convex cell's centroid
+            // is a third of its width from any side at least), so no larger than three
+            // margins times its box's diagonal: its ray may graze what casts the line,
+            // and its answer stands for no other cell. (Only rays' answers are shared.)
+            let by_rays = Toward::ALL.iter().any(|&k| status[k] == Status::Rays);
+            let sliver = 3.0 * self.margin(face);
+            let shaped = (0..cells.len()).map(|i| {
+                let c = cells.cell(i);
+                let (a, q) = area_centroid(c);
+                (a, q, !by_rays || a > sliver * diagonal(c))
+            });
+            let wholes = cells.wholes.iter().map(|&(a, q)| (a, q, true));
+            for (a, c, share) in shaped.chain(wholes) {
                 if a <= 0.0 {
                     continue;
                 }
-                let (s, e) = decide(c);
+                let (s, e) = decide(c, share);
                 a_sun += if s { a } else { 0.0 };
                 a_earth += if e { a } else { 0.0 };
             }
         } else {
-            (a_sun, a_earth) = self.sampled(face, &mut decide);
+            (a_sun, a_earth) = self.sampled(face, &mut |q| decide(q, true));
         }
         (
             if_wanted(Toward::Sun, a_sun),
@@ -344,13 +357,14 @@ impl Silhouettes<'_> {
 
     /// (seen and sunlit, seen and earthlit) at point `q` of `face` (its plane's
     /// coordinates), each direction deciding as `status` says (by rays where `memo` has
-    /// no answer for `q`'s region yet); counts the rays cast.
+    /// no answer for `q`'s region yet, a ray's answer remembered for the region if `q`
+    /// may `share` it); counts the rays cast.
     fn decide(
         &self,
         dirs: &PerDirection<Direction>,
         status: &PerDirection<Status>,
         face: usize,
-        q: DVec2,
+        (q, share): (DVec2, bool),
         memo: &mut PerDirection<RayMemo>,
         rays: &mut u64,
     ) -> (bool, bool) {
@@ -360,7 +374,7 @@ impl Silhouettes<'_> {
                 Status::Clear => true,
                 Status::Dark => false,
                 Status::Counted => dirs[k].counts_none_at(face, q),
-                Status::Rays => memo[k].open(q, || {
+                Status::Rays => memo[k].open(q, share, || {
                     *rays += 1;
                     let d = dirs[k].across.d;
                     let x = self.polys.to3(face, q);
@@ -406,4 +420,13 @@ impl Silhouettes<'_> {
         }
         (a_sun, a_earth)
     }
+}
+
+/// The diagonal (m) of the box round a polygon's corners.
+fn diagonal(poly: &[DVec2]) -> f64 {
+    let (lo, hi) = poly.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    (hi - lo).length()
 }

@@ -163,7 +163,7 @@ impl Silhouettes<'_> {
     }
 
     /// How far (m) a point must stay from a face's lines for its count to be trusted.
-    fn margin(&self, f: usize) -> f64 {
+    pub(super) fn margin(&self, f: usize) -> f64 {
         1e-7 * self.polys.radius[f] + 10.0 * self.eps
     }
 

@@ -183,7 +183,11 @@ fn whole(part: u32, sides: [bool; 2], behind: [bool; 2]) -> PartShadow {
     }
 }
 
-/// Points where the edges of `part`'s faces cross the plane of `g`, m.
+/// Points where the edges of `part`'s faces cross the plane of `g`, m. An edge two faces
+/// share is met from both, in opposite directions: its ends are taken in one order, so
+/// both give the same point to the bit and it is kept once. (Computed each way, the two
+/// differ by ~1e-10 m, and a convex hull of such near twins dropped corners: the hull of
+/// an 80-sided tube through a box's side lost 2e-3 m² of its 2.4.)
 fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> Vec<DVec3> {
     let h = |p: DVec3| g.normal.dot(p - g.centroid);
     let mut out = Vec::new();
@@ -191,6 +195,11 @@ fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> V
         for poly in geoms[f as usize].polygons() {
             for (i, &a) in poly.iter().enumerate() {
                 let b = poly[(i + 1) % poly.len()];
+                let (a, b) = if a.to_array() <= b.to_array() {
+                    (a, b)
+                } else {
+                    (b, a)
+                };
                 let (ha, hb) = (h(a), h(b));
                 if (ha > 0.0 && hb < -tol) || (hb > 0.0 && ha < -tol) {
                     out.push(a + (b - a) * (ha / (ha - hb)));

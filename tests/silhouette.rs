@@ -609,8 +609,8 @@ fn a_truss_of_struts_through_one_another_matches_exact_clipping_over_its_light_c
 }
 
 /// Like the held-out station (`benches/heldout.py`): four cylindrical modules (96, 80, 64
-/// and 48 sides) crossing one another, and two panels through the ends of the longest,
-/// over the held-out epochs against exact clipping. It found `adaptive` wrong where a
+/// and 48 sides, one ring each) crossing one another, and two panels through the ends of
+/// the longest, over the held-out epochs against exact clipping. It found `adaptive` wrong where a
 /// module runs through another's side (up to 3.0e-4 of the maximum, 7.5e-3 of a lit
 /// epoch; glint's `image` method at 2048 px sided with the silhouette method): the hull of
 /// a cut module's shadow folded flat at two corners of its section met 6e-16 m apart.

@@ -186,8 +186,8 @@ fn whole(part: u32, sides: [bool; 2], behind: [bool; 2]) -> PartShadow {
 /// Points where the edges of `part`'s faces cross the plane of `g`, m. An edge two faces
 /// share is met from both, in opposite directions: its ends are taken in one order, so
 /// both give the same point to the bit and it is kept once. (Computed each way, the two
-/// differ by ~1e-10 m, and a convex hull of such near twins dropped corners: the hull of
-/// an 80-sided tube through a box's side lost 2e-3 m² of its 2.4.)
+/// differ in their last bits, and a convex hull of such near twins folded at them: the
+/// hull of an 80-sided tube through a box's side lost 2e-3 m² of its 2.4.)
 fn crossings(g: &FaceGeom, part: &ConvexPart, geoms: &[FaceGeom], tol: f64) -> Vec<DVec3> {
     let h = |p: DVec3| g.normal.dot(p - g.centroid);
     let mut out = Vec::new();

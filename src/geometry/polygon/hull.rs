@@ -183,6 +183,8 @@ pub struct HullIndices {
     /// no particular order: what a cut of the point set by a line can expose.
     pub near: Vec<u32>,
     order: Vec<u32>,
+    /// `order` without near twins ([`drop_near_twins`]), which the corners are found over.
+    twinless: Vec<u32>,
     chain: Vec<u32>,
 }
 
@@ -235,6 +237,8 @@ impl HullIndices {
             self.order.extend(0..points.len() as u32);
         }
         sort_by_position(&mut self.order, points);
+        self.twinless.clone_from(&self.order);
+        drop_near_twins(points, &mut self.twinless);
         self.corners.clear();
         self.near.clear();
         self.chain_pass(points, slack, false);
@@ -250,9 +254,15 @@ impl HullIndices {
 
     /// Monotone chains over the sorted points: strict for the corners (a turn > 0 keeps
     /// a point), tolerant (by `slack`) for the near points; a NaN turn drops it in both.
+    /// The near points are sought among all the points (twins are different vertices,
+    /// perhaps at different heights), the corners among those without near twins.
     fn chain_pass(&mut self, points: &[DVec2], slack: f64, tolerant: bool) {
         self.chain.clear();
-        let order = &self.order;
+        let order = if tolerant {
+            &self.order
+        } else {
+            &self.twinless
+        };
         let item = |j: usize| order[j];
         let at = |i: u32| points[i as usize];
         if tolerant {
@@ -287,6 +297,11 @@ mod tests {
         convex_hull(&[far, next, twin, other], &mut order, &mut hull);
         let triangle = 0.5 * (next - far).perp_dot(twin - far).abs();
         assert!(triangle > 2e-3);
+        // and the corners by index, where the near points keep both twins
+        let mut h = HullIndices::default();
+        h.compute(&[far, next, twin, other], 1e-12);
+        assert_eq!(h.corners.len(), 3, "{:?}", h.corners);
+        assert_eq!(h.near, [0, 1, 2, 3]);
         assert_eq!(hull.len(), 3, "{hull:?}");
         let area = 0.5 * twice_signed_area(&hull);
         assert!(

@@ -107,6 +107,14 @@ fn every_class_matches_exact_clipping_over_its_tumbling_light_curve() {
     }
 }
 
+/// `mesh` as a request's inline mesh: its vertices (m) and triangles.
+fn inline_mesh(mesh: &glint::geometry::Mesh) -> Value {
+    json!({
+        "vertices": mesh.vertices.iter().map(|v| v.to_array()).collect::<Vec<_>>(),
+        "triangles": mesh.triangles,
+    })
+}
+
 /// Epochs in the body frame (no attitude), with an Earth far below.
 fn body_epochs(pairs: &[(DVec3, DVec3)]) -> Vec<Value> {
     pairs
@@ -356,10 +364,7 @@ fn a_count_ray_retried_on_a_rounded_fragment_keeps_to_its_side_of_the_lines() {
     let epochs: Vec<Value> = [112, 191, 246].iter().map(|&i| all[i].clone()).collect();
     let at = |method: Value| {
         let mut r = v.clone();
-        r["object"]["mesh"] = json!({
-            "vertices": mesh.vertices.iter().map(|v| v.to_array()).collect::<Vec<_>>(),
-            "triangles": mesh.triangles,
-        });
+        r["object"]["mesh"] = inline_mesh(&mesh);
         r["epochs"] = Value::Array(epochs.clone());
         r["illumination"]["earthshine"] = json!("off");
         r["method"] = method;
@@ -523,8 +528,7 @@ fn boxes_through_one_another(written: Written) -> (Response, Response) {
         .collect();
     let request = |method: Value| {
         json!({
-            "object": { "mesh": { "vertices": mesh.vertices.iter().map(|v| v.to_array()).collect::<Vec<_>>(),
-                                  "triangles": mesh.triangles },
+            "object": { "mesh": inline_mesh(&mesh),
                         "materials": [{ "name": "surface", "model": "lambert", "albedo": 0.5 }] },
             "epochs": body_epochs(&pairs),
             "illumination": { "earthshine": "off" },
@@ -668,8 +672,7 @@ fn held_out_matches_exact_clipping(name: &str, mut mesh: glint::geometry::Mesh, 
     }
     let request = |method: Value, tolerance: f64| {
         json!({
-            "object": { "mesh": { "vertices": mesh.vertices.iter().map(|v| v.to_array()).collect::<Vec<_>>(),
-                                  "triangles": mesh.triangles },
+            "object": { "mesh": inline_mesh(&mesh),
                         "materials": [{ "name": "surface", "model": "rough-conductor", "alpha": 0.3,
                                         "n": 1.4, "k": 7.5, "kd": 0.1 }] },
             "epochs": epochs,

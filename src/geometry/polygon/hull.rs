@@ -297,17 +297,17 @@ mod tests {
         convex_hull(&[far, next, twin, other], &mut order, &mut hull);
         let triangle = 0.5 * (next - far).perp_dot(twin - far).abs();
         assert!(triangle > 2e-3);
-        // and the corners by index, where the near points keep both twins
-        let mut h = HullIndices::default();
-        h.compute(&[far, next, twin, other], 1e-12);
-        assert_eq!(h.corners.len(), 3, "{:?}", h.corners);
-        assert_eq!(h.near, [0, 1, 2, 3]);
         assert_eq!(hull.len(), 3, "{hull:?}");
         let area = 0.5 * twice_signed_area(&hull);
         assert!(
             (area - triangle).abs() <= 1e-12,
             "{area} against {triangle}"
         );
+        // and the corners by index, where the near points keep both twins
+        let mut h = HullIndices::default();
+        h.compute(&[far, next, twin, other], 1e-12);
+        assert_eq!(h.corners.len(), 3, "{:?}", h.corners);
+        assert_eq!(h.near, [0, 1, 2, 3]);
     }
 
     #[test]

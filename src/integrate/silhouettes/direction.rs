@@ -67,6 +67,9 @@ pub struct Direction {
     pub(super) face_lines: Vec<(u32, u32)>,
     pub(super) lines: Vec<Line>,
     pub(super) folds: Vec<Fold>,
+    /// The edges the fold search found may be folds, before it reads them
+    /// ([`super::folds::find`]).
+    pub(super) maybe_folds: Vec<u32>,
     /// Per edge, a bit: whether it is one of `folds` (so the flood need not test it
     /// again). Bits, not a stamp per edge: at ~200k triangles a stamp per edge (1.2 MB)
     /// left the cache, and the flood asks about every edge it crosses.

@@ -339,7 +339,7 @@ impl<'a> Silhouettes<'a> {
             u,
             w,
             |f| self.blocks(f as usize, d),
-            &mut dir.folds,
+            (&mut dir.maybe_folds, &mut dir.folds),
         );
         tally::took(Tally::FoldSearchNs, since);
         let since = tally::now();

@@ -37,8 +37,8 @@ pub struct Fold {
 /// whose two triangles wind the same way along it: the search does not look inside a
 /// patch that faces one way) (basis across it `(u, w)`, u × w = d); `facing`: each
 /// patch's facing along d; `normal`: each face's unit normal; `blocks(face)`: the face's
-/// sheet counts along d; `(listed, out)`: room for the edges that may be folds, and the
-/// folds.
+/// sheet counts along d; `(maybe_folds, out)`: room for the edges that may be folds, and
+/// the folds.
 #[allow(clippy::too_many_arguments)]
 pub fn find(
     patches: &Patches,
@@ -49,14 +49,14 @@ pub fn find(
     u: DVec3,
     w: DVec3,
     blocks: impl Fn(u32) -> bool + Copy,
-    (listed, out): (&mut Vec<u32>, &mut Vec<Fold>),
+    (maybe_folds, out): (&mut Vec<u32>, &mut Vec<Fold>),
 ) {
     out.clear();
-    listed.clear();
+    maybe_folds.clear();
     // The edges that may be folds are listed first and read after: at ~200k triangles
     // the edges' table is larger than the caches, and reading each edge as it was found
     // waited on its misses one edge at a time.
-    let mut list = |e: u32| listed.push(e);
+    let mut list = |e: u32| maybe_folds.push(e);
     // edge e, when it is a fold (it is not `same_way`)
     let read = |e: u32, out: &mut Vec<Fold>| {
         let edge = &topo.edges[e as usize];
@@ -120,15 +120,15 @@ pub fn find(
             }
         }
     }
-    // a word from the start, middle and end of each listed edge (112 bytes, two or three
-    // cache lines) loaded by loads that wait on nothing, so that their misses overlap;
-    // then each edge read whole from the cache
-    let touched = listed.iter().fold(0u64, |x, &e| {
+    // a word from the start, middle and end of each listed edge (an edge spans two or
+    // three cache lines) loaded by loads that wait on nothing, so that their misses
+    // overlap; then each edge read whole from the cache
+    let touched = maybe_folds.iter().fold(0u64, |x, &e| {
         let edge = &topo.edges[e as usize];
         x ^ edge.a.x.to_bits() ^ edge.in0.x.to_bits() ^ edge.in1.z.to_bits() ^ u64::from(edge.f0)
     });
     std::hint::black_box(touched);
-    for &e in listed.iter() {
+    for &e in maybe_folds.iter() {
         read(e, out);
     }
 }

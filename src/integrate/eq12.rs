@@ -354,14 +354,12 @@ fn visible_sums(
             (sums, rays)
         }
         Occlusion::Silhouettes(sil) => {
-            let whole = lit_patches.iter().flat_map(|lp| {
+            let whole = lit_patches.iter().map(|lp| {
                 let (sun, earth) = lp.lit_by();
-                sil.patch_faces(lp.patch as usize)
-                    .iter()
-                    .map(move |&f| (f, sun, earth))
+                (lp.patch, sun, earth)
             });
             let wanted = lit.iter().map(|lf| (lf.face, lf.sun > 0.0, lf.earth > 0.0));
-            sil.want(silhouettes, wanted.chain(whole));
+            sil.want(silhouettes, wanted, whole);
             sil.prepare(silhouettes, Toward::View, Some(dirs.view));
             sil.drop_hidden(silhouettes);
             sil.prepare(silhouettes, Toward::Sun, dirs.sunlit());

@@ -90,7 +90,7 @@ use rays::Rays;
 use std::sync::atomic::{AtomicBool, Ordering};
 pub use sums::PatchLight;
 use tally::Tally;
-use topology::Topology;
+use topology::{Topology, NONE};
 
 /// Most cells a face is cut into before it is sampled instead.
 const MAX_CELLS: usize = 4096;
@@ -273,19 +273,44 @@ impl<'a> Silhouettes<'a> {
     }
 
     /// Says which faces this epoch will ask [`Silhouettes::areas`] about, and along
-    /// which directions: (face, seen-and-sunlit wanted, seen-and-earthlit wanted). Call
+    /// which directions: (face, seen-and-sunlit wanted, seen-and-earthlit wanted), and
+    /// (patch, the same) for patches all of whose faces are asked about alike. Call
     /// before [`Silhouettes::prepare`].
-    pub fn want(&self, scratch: &mut Scratch, faces: impl Iterator<Item = (u32, bool, bool)>) {
+    pub fn want(
+        &self,
+        scratch: &mut Scratch,
+        faces: impl Iterator<Item = (u32, bool, bool)>,
+        patches: impl Iterator<Item = (u32, bool, bool)>,
+    ) {
+        let bits_of = |sun: bool, earth: bool| {
+            Toward::View.bit()
+                | if sun { Toward::Sun.bit() } else { 0 }
+                | if earth { Toward::Earth.bit() } else { 0 }
+        };
         scratch.wanted.clear();
         scratch.wanted.resize(self.polys.faces(), 0);
         scratch.patch_wanted.clear();
         scratch.patch_wanted.resize(self.patches.len(), 0);
         for (f, sun, earth) in faces {
-            let bits = Toward::View.bit()
-                | if sun { Toward::Sun.bit() } else { 0 }
-                | if earth { Toward::Earth.bit() } else { 0 };
+            let bits = bits_of(sun, earth);
             scratch.wanted[f as usize] = bits;
             scratch.patch_wanted[self.patches.of_face[f as usize] as usize] |= bits;
+        }
+        // a patch's faces noted over their run where they are one (at ~200k triangles a
+        // smooth surface's patches hold most of the faces asked about)
+        for (p, sun, earth) in patches {
+            let (p, bits) = (p as usize, bits_of(sun, earth));
+            let faces = self.patches.faces_of(p);
+            match self.patches.run[p] {
+                NONE => faces
+                    .iter()
+                    .for_each(|&f| scratch.wanted[f as usize] = bits),
+                first => {
+                    let first = first as usize;
+                    scratch.wanted[first..first + faces.len()].fill(bits);
+                }
+            }
+            scratch.patch_wanted[p] |= bits;
         }
     }
 

@@ -116,6 +116,10 @@ pub struct Patches {
     pub links_at: Vec<u32>,
     pub links: Vec<Link>,
     pub exits: Vec<(u32, u32, u32)>,
+    /// Per patch: the first face of its faces' run when their numbers are one run
+    /// (faces renumbered in patch order, `order_by_patches`, mostly are), else [`NONE`]:
+    /// what is noted for every face of such a patch is then noted over one range.
+    pub run: Vec<u32>,
 }
 
 impl Patches {
@@ -125,6 +129,20 @@ impl Patches {
         let shapes = Shapes::of(polys, topo, &faces_at, &faces);
         let ((inner_at, inner), (rim_at, rim), (links_at, links, exits)) =
             edges_by_patch(topo, &of_face, (&faces_at, &faces));
+        let run = (0..np)
+            .map(|p| {
+                let m = &faces[faces_at[p] as usize..faces_at[p + 1] as usize];
+                let (lo, hi) = m
+                    .iter()
+                    .fold((u32::MAX, 0), |(lo, hi), &f| (lo.min(f), hi.max(f)));
+                // distinct numbers: one run exactly when they span as many as there are
+                if !m.is_empty() && (hi - lo) as usize + 1 == m.len() {
+                    lo
+                } else {
+                    NONE
+                }
+            })
+            .collect();
         Patches {
             of_face,
             faces_at,
@@ -150,6 +168,7 @@ impl Patches {
             links_at,
             links,
             exits,
+            run,
         }
     }
 
@@ -553,7 +572,11 @@ mod tests {
                 .filter(|&p| {
                     let mut m = b.faces_of(p).to_vec();
                     m.sort_unstable();
-                    m.windows(2).all(|w| w[1] == w[0] + 1)
+                    let run = m.windows(2).all(|w| w[1] == w[0] + 1);
+                    // and the patch's `run` says so, from its first face
+                    let want = if run { m[0] } else { NONE };
+                    assert_eq!(b.run[p], want, "{what}: patch {p}'s run");
+                    run
                 })
                 .count();
             assert!(

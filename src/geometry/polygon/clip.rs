@@ -95,7 +95,8 @@ pub(super) fn inward_edges(poly: &[DVec2], ccw: bool, eps: f64, out: &mut Vec<(D
     }
 }
 
-pub(super) fn bounds(p: &[DVec2]) -> (DVec2, DVec2) {
+/// The box round the points `p` (m): its low and high corners.
+pub fn bounds(p: &[DVec2]) -> (DVec2, DVec2) {
     p.iter().fold(
         (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
         |(lo, hi), q| (lo.min(*q), hi.max(*q)),

@@ -12,6 +12,7 @@ mod clip;
 mod hull;
 mod region;
 
+pub use clip::bounds;
 pub use hull::{convex_hull, HullIndices};
 pub use region::{Region, TooComplex};
 

@@ -8,6 +8,7 @@ use super::direction::{Direction, FaceState, PatchState};
 use super::polygon_tree::Visit;
 use super::ray_memo::{push_new, RayMemo};
 use super::{Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
+use crate::geometry::polygon::bounds;
 use crate::integrate::per_direction::{PerDirection, Toward};
 use glam::DVec2;
 
@@ -424,9 +425,6 @@ impl Silhouettes<'_> {
 
 /// The diagonal (m) of the box round a polygon's corners.
 fn diagonal(poly: &[DVec2]) -> f64 {
-    let (lo, hi) = poly.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    );
+    let (lo, hi) = bounds(poly);
     (hi - lo).length()
 }

@@ -441,6 +441,27 @@ mod tests {
             super::super::cells::area_centroid(polys.corners2(k)).0
         });
         assert!((hull_area - area).abs() > 1e-9 * area, "{hull_area} {area}");
+        // its corners: vertices of the mesh on the square's outline, the square's four
+        // among them (rounding leaves the outline's other vertices a hair off its sides,
+        // and some are corners of the hull too), in the plane coordinates beside them,
+        // counter-clockwise: the hull of the 169 vertices of 288 triangles, each listed once
+        let k = polys.of(0).start;
+        let got = polys.corners3(k);
+        for (x, y) in [(0.0, 0.0), (0.3, 0.0), (0.3, 0.3), (0.0, 0.3)] {
+            let corner = (turn * DVec3::new(x, y, 0.0)).map(round);
+            assert!(got.iter().any(|q| q.distance(corner) < 1e-12), "{got:?}");
+        }
+        for (i, &q) in got.iter().enumerate() {
+            assert!(square.vertices.contains(&q));
+            let p = turn.inverse() * q;
+            let off_sides = [p.x, p.x - 0.3, p.y, p.y - 0.3].map(f64::abs);
+            assert!(
+                off_sides.into_iter().fold(f64::INFINITY, f64::min) < 1e-8,
+                "{p}"
+            );
+            assert!(polys.to2(0, q).distance(polys.corners2(k)[i]) < 1e-12);
+        }
+        assert!(hull_area > 0.0);
         // an L (a quarter of the squares left out) keeps its notch: not convex
         let half = DVec2::new(0.15, 0.0);
         let l = object(&[
@@ -452,5 +473,10 @@ mod tests {
         let polys = Polygons::build(&l, &faces, vec![false; 2], eps);
         assert!(!polys.convex[0]);
         assert_eq!(polys.of(0).len(), l.triangles.len() - 1);
+        // its triangles, each counter-clockwise about the face's normal
+        for k in polys.of(0) {
+            let c = polys.corners2(k);
+            assert!(orient(c[0], c[1], c[2]) > 0.0, "{c:?}");
+        }
     }
 }

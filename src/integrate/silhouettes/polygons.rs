@@ -131,32 +131,33 @@ impl Polygons {
             p.inside.push((a + b + c) / 3.0);
             p.centre.push(f.centroid);
             p.radius.push(f.radius);
-            pts.clear();
-            ids.clear();
-            // A hull needs each corner once, and a vertex of a finely meshed face is a
-            // corner of about six of its triangles (a cubesat's side of 31k triangles
-            // took 3 ms, most of it its 94k corners). Listed in the triangles' order,
-            // each at its first, so the hull and the corners it is given are the same.
-            let large = f.triangles.len() >= Polygons::MANY_TRIANGLES;
-            if large && listed.is_empty() {
-                listed = vec![0; mesh.vertices.len()];
-            }
-            let stamp = (i - first_face + 1) as u32;
-            for &t in &f.triangles {
-                for v in mesh.triangles[t as usize] {
-                    if large {
-                        if listed[v as usize] == stamp {
-                            continue;
-                        }
-                        listed[v as usize] = stamp;
-                    }
-                    pts.push(to2(mesh.vertices[v as usize]));
-                    ids.push(mesh.vertices[v as usize]);
-                }
-            }
             let first = p.spans.len() as u32;
             let mut convex = f.triangles.len() == 1;
             if f.triangles.len() > 1 {
+                // A hull needs each corner once, and a vertex of a finely meshed face is
+                // a corner of about six of its triangles (a cubesat's side of 31k
+                // triangles took 3 ms, most of it its 94k corners). Listed in the
+                // triangles' order, each at its first, so the hull and the corners it is
+                // given are the same.
+                pts.clear();
+                ids.clear();
+                let large = f.triangles.len() >= Polygons::MANY_TRIANGLES;
+                if large && listed.is_empty() {
+                    listed = vec![0; mesh.vertices.len()];
+                }
+                let stamp = (i - first_face + 1) as u32;
+                for &t in &f.triangles {
+                    for v in mesh.triangles[t as usize] {
+                        if large {
+                            if listed[v as usize] == stamp {
+                                continue;
+                            }
+                            listed[v as usize] = stamp;
+                        }
+                        pts.push(to2(mesh.vertices[v as usize]));
+                        ids.push(mesh.vertices[v as usize]);
+                    }
+                }
                 crate::geometry::polygon::convex_hull(&pts, &mut order, &mut hull);
                 let (area, _) = super::cells::area_centroid(&hull);
                 // Rounded corners (an OBJ file's nine decimals) leave an outline's

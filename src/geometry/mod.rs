@@ -10,6 +10,7 @@ pub mod csr;
 pub mod faces;
 pub mod mesh;
 pub mod obj;
+pub mod permute;
 pub mod polygon;
 pub mod union_find;
 

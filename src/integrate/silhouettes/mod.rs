@@ -75,6 +75,7 @@ pub mod tally;
 mod topology;
 
 use super::per_direction::{PerDirection, Toward};
+use crate::geometry::faces::WeldedEdge;
 use crate::geometry::{Faces, Mesh};
 use crate::scene::Scene;
 use cells::{Cells, Cutter};
@@ -156,8 +157,8 @@ impl<'a> Silhouettes<'a> {
         faces: &mut Faces,
         grid: Option<TriangleGrid>,
     ) -> Silhouettes<'a> {
-        Silhouettes::build_with(scene, faces, grid, |faces| {
-            order_by_patches(&scene.mesh, faces, |m| {
+        Silhouettes::build_with(scene, faces, grid, |faces, sorted| {
+            order_by_patches(&scene.mesh, faces, sorted, |m| {
                 scene.materials[m as usize].two_sided
             })
         })
@@ -170,7 +171,7 @@ impl<'a> Silhouettes<'a> {
     }
 
     pub fn build(scene: &'a Scene, faces: &Faces) -> Silhouettes<'a> {
-        Silhouettes::build_with(scene, &mut faces.clone(), None, |_| {})
+        Silhouettes::build_with(scene, &mut faces.clone(), None, |_, _| {})
     }
 
     /// The silhouettes of `faces` once `arrange` has renumbered them.
@@ -178,7 +179,7 @@ impl<'a> Silhouettes<'a> {
         scene: &'a Scene,
         faces: &mut Faces,
         grid: Option<TriangleGrid>,
-        arrange: impl FnOnce(&mut Faces) + Send,
+        arrange: impl FnOnce(&mut Faces, &[WeldedEdge]) + Send,
     ) -> Silhouettes<'a> {
         tally::add(Tally::Preparations, 1);
         let mesh = &scene.mesh;
@@ -189,38 +190,56 @@ impl<'a> Silhouettes<'a> {
         // wait while the other renumbers them starts it, and both finish it beside the
         // edges and the polygons.
         let face_as_merged = faces.triangle_faces(mesh.triangles.len());
-        let (welded, edges) = faces.welded_edges(mesh);
-        let (welded, edges) = (welded.into_owned(), edges.into_owned());
+        // the welded tables taken out of `faces` while the search reads them and the
+        // faces are renumbered, and put back after (a copy of them, ~7 MB at 200k
+        // triangles, was paid in page faults on one thread while the other waited)
+        let kept = !faces.edges.is_empty();
+        let (welded, edges) = match kept {
+            true => (
+                std::mem::take(&mut faces.welded),
+                std::mem::take(&mut faces.edges),
+            ),
+            false => mesh.welded_edges(),
+        };
         let mut search = PairSearch::new(mesh, (&welded, &edges), &face_as_merged, None, eps, grid);
         let renumbered = AtomicBool::new(false);
         rayon::join(
             || {
-                tally::timed(Tally::RenumberNs, || arrange(faces));
+                tally::timed(Tally::RenumberNs, || arrange(faces, &edges));
                 renumbered.store(true, Ordering::Relaxed);
             },
             || tally::timed(Tally::ContactSearchNs, || search.run_until(&renumbered)),
         );
-        let faces = &*faces;
         let (tri_face, two_sided) = face_tables(scene, faces);
         // the topology and the polygons need only the faces, the patches and the rays
         // only those two: built two at a time
-        let ((topo, pairs), polys) = rayon::join(
-            || {
-                rayon::join(
-                    || {
-                        tally::timed(Tally::TopologyNs, || {
-                            Topology::without_contacts(mesh, faces, &tri_face, &two_sided, eps)
-                        })
-                    },
-                    || tally::timed(Tally::ContactSearchNs, || search.finish()),
-                )
-            },
-            || {
-                tally::timed(Tally::PolygonsNs, || {
-                    Polygons::build(mesh, faces, two_sided.clone(), eps)
-                })
-            },
-        );
+        let ((topo, pairs), polys) = {
+            let faces = &*faces;
+            rayon::join(
+                || {
+                    rayon::join(
+                        || {
+                            tally::timed(Tally::TopologyNs, || {
+                                let welded = (&welded[..], &edges[..]);
+                                Topology::without_contacts(
+                                    mesh, faces, welded, &tri_face, &two_sided, eps,
+                                )
+                            })
+                        },
+                        || tally::timed(Tally::ContactSearchNs, || search.finish()),
+                    )
+                },
+                || {
+                    tally::timed(Tally::PolygonsNs, || {
+                        Polygons::build(mesh, faces, two_sided.clone(), eps)
+                    })
+                },
+            )
+        };
+        if kept {
+            (faces.welded, faces.edges) = (welded, edges);
+        }
+        let faces = &*faces;
         let topo = topo.with_contacts(pairs.on_faces(mesh, &tri_face, eps));
         let (patches, rays) = rayon::join(
             || tally::timed(Tally::PatchesNs, || Patches::build(&polys, &topo)),

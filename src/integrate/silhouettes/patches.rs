@@ -13,6 +13,8 @@ use super::polygons::Polygons;
 use super::slab::Slab;
 use super::topology::{Topology, NONE};
 use crate::geometry::csr::{csr_of, sort_within};
+use crate::geometry::faces::WeldedEdge;
+use crate::geometry::permute::permute;
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
@@ -304,9 +306,11 @@ fn grow_over<I: Iterator<Item = u32>>(
 /// at ~200k faces. The patches are grown here over the faces' shared welded edges (what
 /// `Topology` is built from, without its contacts and polygons), so the build that
 /// follows grows the same patches, or nearly, from faces already in their order.
+/// `sorted`: the mesh's welded edges ([`crate::geometry::Faces::welded_edges`]).
 pub fn order_by_patches(
     mesh: &crate::geometry::Mesh,
     faces: &mut crate::geometry::Faces,
+    sorted: &[WeldedEdge],
     two_sided: impl Fn(u32) -> bool,
 ) {
     let nf = faces.len();
@@ -314,7 +318,6 @@ pub fn order_by_patches(
         return;
     }
     let tri_face = faces.triangle_faces(mesh.triangles.len());
-    let (_, sorted) = faces.welded_edges(mesh);
     let mut pairs = Vec::new();
     for run in sorted.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
         for (i, x) in run.iter().enumerate() {
@@ -339,25 +342,6 @@ pub fn order_by_patches(
         |f| next[at[f] as usize..at[f + 1] as usize].iter().copied(),
     );
     permute(&mut faces.faces, &order);
-}
-
-/// Puts `items[order[k]]` at `k` for every k (`order` a permutation), in place: each cycle
-/// of the permutation followed by swaps (a copy of 200k faces through a table of options
-/// was a third of the ordering's time).
-fn permute<T>(items: &mut [T], order: &[u32]) {
-    let mut placed = vec![false; items.len()];
-    for start in 0..items.len() {
-        let mut k = start;
-        while !placed[k] {
-            placed[k] = true;
-            let from = order[k] as usize;
-            if from == start {
-                break;
-            }
-            items.swap(k, from);
-            k = from;
-        }
-    }
 }
 
 /// Per patch: its normals' cone, its box, whether a contact runs through it, and whether
@@ -556,7 +540,9 @@ mod tests {
             let mut faces = Faces::build(&mesh, true);
             faces.sort_spatially();
             let before: Vec<Vec<u32>> = faces.faces.iter().map(|f| f.triangles.clone()).collect();
-            order_by_patches(&mesh, &mut faces, |_| false);
+            let (_, sorted) = faces.welded_edges(&mesh);
+            let sorted = sorted.into_owned();
+            order_by_patches(&mesh, &mut faces, &sorted, |_| false);
             // a permutation: every face once, unchanged
             let mut after: Vec<Vec<u32>> =
                 faces.faces.iter().map(|f| f.triangles.clone()).collect();

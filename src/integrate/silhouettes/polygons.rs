@@ -59,6 +59,14 @@ impl Polygons {
             two_sided,
             ..Polygons::empty(nf)
         };
+        // the joined tables made their full size at once: grown as the runs are
+        // appended, each would be copied again at every doubling into memory not yet
+        // touched (page faults are most of what appending costs, ~20 MB at 200k faces)
+        let total = |len: fn(&Polygons) -> usize| parts.iter().map(len).sum::<usize>();
+        p.face.reserve_exact(total(|q| q.face.len()));
+        p.spans.reserve_exact(total(|q| q.spans.len()));
+        p.corners.reserve_exact(total(|q| q.corners.len()));
+        p.corners2.reserve_exact(total(|q| q.corners2.len()));
         for part in parts {
             let (spans, corners) = (p.spans.len() as u32, p.corners.len() as u32);
             p.normal.extend(part.normal);

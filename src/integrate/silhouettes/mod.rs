@@ -174,7 +174,8 @@ impl<'a> Silhouettes<'a> {
         Silhouettes::build_with(scene, &mut faces.clone(), None, |_, _| {})
     }
 
-    /// The silhouettes of `faces` once `arrange` has renumbered them.
+    /// The silhouettes of `faces` once `arrange(faces, sorted)` has renumbered them (given
+    /// the mesh's welded edges, [`Faces::welded_edges`]).
     fn build_with(
         scene: &'a Scene,
         faces: &mut Faces,

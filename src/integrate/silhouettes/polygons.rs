@@ -61,7 +61,7 @@ impl Polygons {
         };
         // the joined tables made their full size at once: grown as the runs are
         // appended, each would be copied again at every doubling into memory not yet
-        // touched (page faults are most of what appending costs, ~20 MB at 200k faces)
+        // touched (page faults are most of what appending costs: tens of MB at 200k faces)
         let total = |len: fn(&Polygons) -> usize| parts.iter().map(len).sum::<usize>();
         p.face.reserve_exact(total(|q| q.face.len()));
         p.spans.reserve_exact(total(|q| q.spans.len()));

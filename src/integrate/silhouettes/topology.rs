@@ -419,7 +419,6 @@ fn merge_in_line(mut edges: Vec<Edge>, ends: &[(u32, u32)], vertices: &[DVec3]) 
     };
     for group in order.chunk_by(|&i, &j| key(i) == key(j)) {
         if group.len() == 1 {
-            used[group[0] as usize] = true;
             from.push(group[0]);
             continue;
         }

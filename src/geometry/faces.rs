@@ -103,6 +103,30 @@ impl Faces {
         }
     }
 
+    /// [`Faces::welded_edges`] owned, for reading while the faces change: those merging
+    /// kept are taken out of the faces (a copy of them is ~7 MB at 200k triangles; give
+    /// them back with [`Faces::put_back_welded_edges`]), or computed here. The flag says
+    /// whether they were taken.
+    pub fn take_welded_edges(&mut self, mesh: &Mesh) -> (Vec<u32>, Vec<WeldedEdge>, bool) {
+        if self.edges.is_empty() {
+            let (welded, edges) = mesh.welded_edges();
+            (welded, edges, false)
+        } else {
+            let welded = std::mem::take(&mut self.welded);
+            (welded, std::mem::take(&mut self.edges), true)
+        }
+    }
+
+    /// Returns what [`Faces::take_welded_edges`] took (nothing when it computed them).
+    pub fn put_back_welded_edges(
+        &mut self,
+        (welded, edges, taken): (Vec<u32>, Vec<WeldedEdge>, bool),
+    ) {
+        if taken {
+            (self.welded, self.edges) = (welded, edges);
+        }
+    }
+
     /// Gives each face its tangent from `axis(material)`, a unit body-frame direction
     /// ([`tangent_of`]).
     pub fn set_tangents(&mut self, axis: impl Fn(u32) -> DVec3) {

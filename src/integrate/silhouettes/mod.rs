@@ -192,16 +192,9 @@ impl<'a> Silhouettes<'a> {
         // edges and the polygons.
         let face_as_merged = faces.triangle_faces(mesh.triangles.len());
         // the welded tables taken out of `faces` while the search reads them and the
-        // faces are renumbered, and put back after (a copy of them, ~7 MB at 200k
-        // triangles, was paid in page faults on one thread while the other waited)
-        let kept = !faces.edges.is_empty();
-        let (welded, edges) = match kept {
-            true => (
-                std::mem::take(&mut faces.welded),
-                std::mem::take(&mut faces.edges),
-            ),
-            false => mesh.welded_edges(),
-        };
+        // faces are renumbered, and put back after (their copy was paid in page faults
+        // on one thread while the other waited)
+        let (welded, edges, taken) = faces.take_welded_edges(mesh);
         let mut search = PairSearch::new(mesh, (&welded, &edges), &face_as_merged, None, eps, grid);
         let renumbered = AtomicBool::new(false);
         rayon::join(
@@ -237,9 +230,7 @@ impl<'a> Silhouettes<'a> {
                 },
             )
         };
-        if kept {
-            (faces.welded, faces.edges) = (welded, edges);
-        }
+        faces.put_back_welded_edges((welded, edges, taken));
         let faces = &*faces;
         let topo = topo.with_contacts(pairs.on_faces(mesh, &tri_face, eps));
         let (patches, rays) = rayon::join(

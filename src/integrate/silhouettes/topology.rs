@@ -522,10 +522,14 @@ mod tests {
 
     /// The topology of `mesh` (faces merged), with every face one-sided or two-sided.
     fn topology_of(mesh: &Mesh, two_sided: bool) -> Topology {
-        let faces = Faces::build(mesh, true);
+        topology_of_faces(mesh, &Faces::build(mesh, true), two_sided)
+    }
+
+    /// The topology of `mesh` as `faces`, with every face one-sided or two-sided.
+    fn topology_of_faces(mesh: &Mesh, faces: &Faces, two_sided: bool) -> Topology {
         let tri_face = faces.triangle_faces(mesh.triangles.len());
         let two_sided = vec![two_sided; faces.len()];
-        Topology::build_within(mesh, &faces, &tri_face, &two_sided, None, 1e-9, None)
+        Topology::build_within(mesh, faces, &tri_face, &two_sided, None, 1e-9, None)
     }
 
     /// An L-shaped prism, 1 m high: its footprint (0,0) (2,0) (2,1) (1,1) (1,2) (0,2) turns
@@ -628,9 +632,7 @@ mod tests {
             if backwards {
                 faces.faces.reverse();
             }
-            let tri_face = faces.triangle_faces(mesh.triangles.len());
-            let two_sided = vec![false; faces.len()];
-            let t = Topology::build_within(&mesh, &faces, &tri_face, &two_sided, None, 1e-9, None);
+            let t = topology_of_faces(&mesh, &faces, false);
             assert_eq!(t.edges.len(), 12);
             let on_face = |f: u32, x: DVec3| {
                 let face = &faces.faces[f as usize];

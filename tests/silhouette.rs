@@ -275,6 +275,29 @@ fn the_box_wing_at_medium_detail_matches_exact_clipping_where_its_boom_meets_the
     agree_at("box-wing-tumbling", "medium", all[121..129].to_vec());
 }
 
+/// A face another piece meets (the bus under the boom, the wings' booms, the dish's
+/// struts) is counted across its contacts as across fold lines, each contact with the
+/// jump of the other piece's sheet: no ray of its own. What then casts rays is the first
+/// unit of each connected region of receivers: 16 (box-wing) and 36 (dish-sat) an epoch
+/// at coarse detail over the tumble (along the view, the Sun and the Earth's beam), where
+/// a ray for each region of a touched face's cells had cast 107 and 257. At most 60 an
+/// epoch on either, and the curve within [`EXACT`] of exact clipping at the same epochs.
+#[test]
+fn faces_other_pieces_meet_are_counted_across_their_contacts_not_cast_rays() {
+    for class in ["box-wing-tumbling", "dish-sat"] {
+        let v = request(class);
+        let all = v["epochs"].as_array().expect("epochs");
+        let epochs: Vec<Value> = all.iter().step_by(13).cloned().collect();
+        let n = epochs.len() as u64;
+        let (s, _) = agree(class, epochs);
+        assert!(
+            s.summary.rays <= 60 * n,
+            "{class}: {} rays over {n} epochs",
+            s.summary.rays
+        );
+    }
+}
+
 /// Pass 1 skips a patch as unseen without reading its faces: every face of such a patch
 /// must turn away from the observer (n·v < 0), on every class and along directions all
 /// round it, and the skip must take effect (a closed body turns some patch away from

@@ -311,6 +311,31 @@ pub fn crossed(lines: &[Line], x: DVec2, y: DVec2) -> i32 {
     n
 }
 
+/// Joins the ends of `lines` that lie within `snap` (m) of an end of a contact's line
+/// (`lines[contacts..]` are the contacts'), each moved onto it: where another piece's
+/// fold edge pierces a face, its line and two of the piece's contacts end at one point,
+/// but computed apart their ends differ by rounding, and a path through the gap between
+/// them would cross neither ([`crossed`] counts a joint's lines right only where they
+/// share the end exactly). The face's contacts are few: each is compared with every line.
+pub fn join_at_contacts(lines: &mut [Line], contacts: usize, snap: f64) {
+    let snap2 = snap * snap;
+    for i in contacts..lines.len() {
+        for end in [lines[i].p, lines[i].q] {
+            for (j, l) in lines.iter_mut().enumerate() {
+                if j == i {
+                    continue;
+                }
+                if (l.p - end).length_squared() <= snap2 {
+                    l.p = end;
+                }
+                if (l.q - end).length_squared() <= snap2 {
+                    l.q = end;
+                }
+            }
+        }
+    }
+}
+
 /// The least distance (m) from `x` to any of `lines`.
 pub fn clearance(lines: &[Line], x: DVec2) -> f64 {
     lines
@@ -363,5 +388,45 @@ mod tests {
             0
         );
         assert!((clearance(&lines, DVec2::new(2.0, 0.0)) - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_folds_line_that_ends_a_rounding_short_of_a_contact_is_joined_to_it() {
+        // A contact from (0, 0) to the pierce point (1, 0), and the piercing fold's line
+        // from there on, both with the covered side on their left: one boundary. The
+        // fold's end computed apart lies 2e-9 m off the contact's (as on the held-out
+        // truss, whose tolerance is ~4e-9 m).
+        let line = |p: DVec2, q: DVec2| Line {
+            p,
+            q,
+            jump: 1,
+            bounds: true,
+        };
+        let mut lines = [
+            line(DVec2::new(1.0 + 2e-9, 1e-9), DVec2::new(2.0, 1.0)),
+            line(DVec2::ZERO, DVec2::new(1.0, 0.0)),
+        ];
+        // a path across the boundary through the gap crosses neither line, one beside
+        // it crosses the contact
+        let (below, above) = (DVec2::new(1.0 + 1e-9, -1.0), DVec2::new(1.0 + 1e-9, 0.5));
+        let (below_far, above_far) = (DVec2::new(0.5, -1.0), DVec2::new(0.5, 1.0));
+        assert_eq!(crossed(&lines, below, above), 0);
+        assert_eq!(crossed(&lines, below_far, above_far), 1);
+        join_at_contacts(&mut lines, 1, 1e-8);
+        assert_eq!(lines[0].p, DVec2::new(1.0, 0.0));
+        assert_eq!(
+            lines[1].q,
+            DVec2::new(1.0, 0.0),
+            "the contact does not move"
+        );
+        assert_eq!(crossed(&lines, below, above), 1);
+        assert_eq!(crossed(&lines, below_far, above_far), 1);
+        // an end farther than the snap stays where it is
+        let mut apart = [
+            line(DVec2::new(1.0, 1e-6), DVec2::new(2.0, 1.0)),
+            line(DVec2::ZERO, DVec2::new(1.0, 0.0)),
+        ];
+        join_at_contacts(&mut apart, 1, 1e-8);
+        assert_eq!(apart[0].p, DVec2::new(1.0, 1e-6));
     }
 }

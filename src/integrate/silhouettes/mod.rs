@@ -40,13 +40,16 @@
 //! direction decides face by face is summed whole from its form, with no BRDF or area
 //! per face ([`sums`]; the caller lists it, `integrate::eq12`).
 //!
-//! A crossed face ([`Silhouettes::areas`], in [`areas`]) is cut by its lines (and its
-//! contacts) into convex cells ([`cells`]); a cell's count along each direction is its face's
-//! reference count plus the jumps of the lines between them: no ray (the view's lines cut
-//! first, and only the cells seen cut by the lights'). Only the cells of a face a contact
-//! runs through are decided by rays (the count does not follow the sheets there), cut
-//! along every contact, one ray per region of each direction's own lines and the face's
-//! contacts ([`ray_memo`]). Nothing is
+//! A crossed face ([`Silhouettes::areas`], in [`areas`]) is cut by its lines into convex
+//! cells ([`cells`]); a cell's count along each direction is its face's reference count
+//! plus the jumps of the lines between them: no ray (the view's lines cut first, and only
+//! the cells seen cut by the lights'). A contact on a face is one of its lines, with the
+//! jump of the other piece's sheet across it ([`contacts::Contact::jump`]), its ends
+//! joined to the lines of the other piece's folds that pierce the face there
+//! ([`lines::join_at_contacts`]). Only the cells of a crossed face that is not convex (a
+//! path between two of its points may leave it) are decided by rays, cut along every
+//! contact, one ray per region of each direction's own lines and the face's contacts
+//! ([`ray_memo`]). Nothing is
 //! recognised by shape: a convex mesh has no fold above any face and is one clean
 //! region (one ray a direction); a dish, a bell in a skirt or a crumpled fragment cost
 //! what their fold lines cost. The areas are exact up to

@@ -1,5 +1,5 @@
 //! One direction's ray answers on one face, shared between the cells of a region
-//! ([`RayMemo`]): where a face is decided by rays (another piece meets it,
+//! ([`RayMemo`]): where a face is decided by rays (lines cross it and it is not convex,
 //! [`super::areas`]), one ray answers for every cell whose centroid lies on the same side
 //! of each of the direction's bounding lines and the face's contacts.
 

@@ -4,7 +4,7 @@
 //!
 //! Two questions are asked: how many sheets of the surface lie above a point along d
 //! ([`Rays::count`]: the seed of each connected region's count, see [`super::counts`]),
-//! and whether any does ([`Rays::blocked`]: the cells of a face a contact runs through).
+//! and whether any does ([`Rays::blocked`]: the cells of a crossed face that is not convex).
 //! A sheet counts where the ray leaves a closed piece (through a face facing along d) or
 //! crosses an open one; each node keeps the cone of its closed faces' normals, so a
 //! subtree whose closed faces all face away from d, and that holds no open face, is

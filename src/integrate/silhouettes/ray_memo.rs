@@ -51,9 +51,8 @@ impl RayMemo {
     /// Readies the memo for a face whose lines along the direction are `lines` and whose
     /// contacts are `contacts` (in its plane's coordinates, m): a region is bounded by
     /// every contact too, whether or not the count jumps across it along this direction
-    /// (a ray does not know why it is blocked, and where another piece stands on a face
-    /// the counts are checked against rays only as far as the suite and the held-out
-    /// objects reach: the regions stay as conservative as before counts crossed contacts).
+    /// (a ray does not know why it is blocked: bounded by every contact, a region lies on
+    /// one side of each place another piece meets the face, whatever the count does there).
     pub(super) fn reset<'l>(
         &mut self,
         convex: bool,

@@ -315,9 +315,7 @@ impl Silhouettes<'_> {
         // cell. A contact is counted across as a fold's line is, by its jump (none
         // across the foot of a wall that faces away: near it the piece lies above the
         // face on both sides, a ray from outside entering it through the wall, one from
-        // inside the foot starting in it). On the suite's classes and the held-out
-        // cluster, truss and station the counts give what a ray per region gave, within
-        // rounding.
+        // inside the foot starting in it).
         dir.face[f] = if crossed && !self.polys.convex[f] {
             FaceState::Rays
         } else if crossed {

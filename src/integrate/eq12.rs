@@ -90,6 +90,19 @@ impl LitPatch {
     fn lit_by(&self) -> (bool, bool) {
         (self.sun != DVec3::ZERO, self.earth != DVec3::ZERO)
     }
+
+    /// One of its faces' Sun and earthshine terms, W/(m²·sr) per m², given its unit
+    /// normal `n` and the unit direction to the observer `v`: (n·L)(n·v), what
+    /// [`face_terms`] finds for every normal of the patch's cone, up to rounding. Either
+    /// side's normal gives the same product.
+    #[inline]
+    fn face_terms(&self, n: DVec3, v: DVec3) -> (f64, f64) {
+        let cr = n.dot(v);
+        (
+            (n.dot(self.sun) * cr).max(0.0),
+            (n.dot(self.earth) * cr).max(0.0),
+        )
+    }
 }
 
 /// The directions of one epoch in the body frame (unit vectors) and the Sun's band
@@ -133,7 +146,7 @@ pub fn evaluate(
     };
     let lights = material_lights(lighting.materials, epoch, dirs.view, &light);
     let (decided, unshadowed) = lit_faces(p, &lights, &dirs, scratch);
-    let (sums, rays) = visible_sums(p, &lights, &dirs, decided, unshadowed, scratch, cancelled);
+    let (sums, rays) = visible_sums(p, &dirs, decided, unshadowed, scratch, cancelled);
     let result = epoch_result(p, epoch, range, dirs.view, &light, sums);
     tally::took(Tally::EpochNs, since);
     (result, rays)
@@ -322,7 +335,6 @@ fn lit_patches(
 /// added to pass 1's sums. Returns the epoch's sums and the rays cast.
 fn visible_sums(
     p: &Prepared,
-    lights: &[MaterialLight],
     dirs: &Directions,
     decided: Sums,
     unshadowed: f64,
@@ -387,12 +399,16 @@ fn visible_sums(
                             sums.earth += lp.light.of(lp.earth);
                         }
                     }
-                    // a line crosses it along some direction: face by face
+                    // a line crosses it along some direction: face by face, each face's
+                    // terms (n·L)(n·v) as the patch's sum takes them (its lights are
+                    // linear over its normals), not a BRDF a face
                     None => {
-                        for &f in sil.patch_faces(lp.patch as usize) {
+                        let faces = sil.patch_faces(lp.patch as usize);
+                        tally::add(Tally::FacesInCrossedSums, faces.len() as u64);
+                        for &f in faces {
                             let face = &p.faces.faces[f as usize];
-                            let terms = face_terms(face, lights, dirs.view, dirs.sun_w_m2);
-                            if let Some((_, sun, earth)) = terms {
+                            let (sun, earth) = lp.face_terms(face.normal, dirs.view);
+                            if sun > 0.0 || earth > 0.0 {
                                 rays +=
                                     face_areas(silhouettes, &mut sums, f, sun, earth, face.area);
                             }

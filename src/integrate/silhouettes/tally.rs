@@ -37,10 +37,12 @@ pub enum Tally {
     RayLeafPolygons,
     RayPlanes,
     /// Epochs, and the faces of seen patches whose light was summed face by face, and
-    /// those summed whole from their patch's form.
+    /// those summed whole from their patch's form; of these, those of patches a line
+    /// crossed, decided face by face with terms from their patch's lights.
     Epochs,
     FacesOneByOne,
     FacesInSums,
+    FacesInCrossedSums,
     /// The patches' queries for the folds above them: the folds met in the grid's cells,
     /// of which met again (in another cell of the query), below the patch along d, off
     /// its box, off its slab; the rest are kept as near. Then, per receiving face of a
@@ -173,7 +175,8 @@ pub fn report() -> Option<String> {
          faces' scans: {:.0} near folds, {:.0} tested exactly\n  \
          rays: {:.1} a direction, each visiting {:.1} nodes, {:.1} leaf polygons, {:.1} planes met\n  \
          µs: fold search {:.1}, fold grid {:.1}, fold queries {:.1}, footprints {:.1}, faces' lines {:.1}, flood {:.1}\n\
-         per epoch ({} epochs): light summed over {:.0} faces one by one, {:.0} in whole patches; \
+         per epoch ({} epochs): light summed over {:.0} faces one by one, {:.0} in whole patches \
+         ({:.0} of them in patches a line crosses); \
          µs: areas {:.1}, whole epoch {:.1}\n\
          per preparation ({}), ms on the thread that ran each step: faces {:.2}, triangles' grid {:.2}, \
          renumbering {:.2}, contact search {:.2}, topology {:.2}, polygons {:.2}, patches {:.2}, rays' tree {:.2}",
@@ -208,6 +211,7 @@ pub fn report() -> Option<String> {
         get(Tally::Epochs),
         per_epoch(Tally::FacesOneByOne),
         per_epoch(Tally::FacesInSums),
+        per_epoch(Tally::FacesInCrossedSums),
         us(per_epoch(Tally::AreasNs)),
         us(per_epoch(Tally::EpochNs)),
         get(Tally::Preparations),

@@ -32,6 +32,11 @@ pub(super) struct Level {
     pub(super) keys: Vec<u64>,
     pub(super) start: Vec<u32>,
     pub(super) binned: Vec<u32>,
+    /// Per cell of a level above the finest, the box bounding its triangles' boxes (m);
+    /// empty at level 0, which no finer triangle asks. A coarse cell of a boom's or a
+    /// strut's long triangles holds tens of them, and the fine triangles around it ask
+    /// the cell for its triangles one by one; most are asked in vain.
+    bound: Vec<(DVec3, DVec3)>,
     /// Per cell, after [`LevelGrid::mark_faces`]: the one face all its triangles lie in,
     /// or [`MIXED`]; empty before.
     pub(super) face: Vec<u32>,
@@ -177,6 +182,20 @@ impl LevelGrid {
             });
         }
         (level.start, level.binned) = csr_of(level.keys.len(), entries.iter().copied());
+        if k > 0 {
+            level.bound = level
+                .start
+                .windows(2)
+                .map(|w| {
+                    let items = &level.binned[w[0] as usize..w[1] as usize];
+                    let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+                    items.iter().fold(empty, |(lo, hi), &t| {
+                        let b = boxes[t as usize];
+                        (lo.min(b.0), hi.max(b.1))
+                    })
+                })
+                .collect();
+        }
         level
     }
 
@@ -224,7 +243,8 @@ impl LevelGrid {
 
     /// Calls `each` with the key and the triangles of every occupied cell at level `k`
     /// that box `b` touches, passing over the cells whose
-    /// triangles all lie in face `except` (after [`LevelGrid::mark_faces`]).
+    /// triangles all lie in face `except` (after [`LevelGrid::mark_faces`]) and, above
+    /// level 0, those whose triangles' boxes all miss b.
     #[inline]
     pub(super) fn cells_near(
         &self,
@@ -242,10 +262,24 @@ impl LevelGrid {
                 if except.is_some() && level.face.get(i as usize) == except.as_ref() {
                     return;
                 }
+                if let Some(&(lo, hi)) = level.bound.get(i as usize) {
+                    if lo.cmpgt(b.1).any() || b.0.cmpgt(hi).any() {
+                        return;
+                    }
+                }
                 let (s, e) = (level.start[i as usize], level.start[i as usize + 1]);
                 each(key, &level.binned[s as usize..e as usize]);
             }
         });
+    }
+
+    /// How many occupied cells at level `k` box `b` touches, read or not.
+    #[cfg(test)]
+    fn cells_near_all(&self, b: (DVec3, DVec3), k: u8) -> usize {
+        let mut n = 0;
+        let index = &self.levels[k as usize].index;
+        self.cells_of(b, k, |key| n += usize::from(index.contains_key(&key)));
+        n
     }
 
     /// Notes per cell the one face (`tri_face`: per triangle) all its triangles lie in:
@@ -281,9 +315,10 @@ impl LevelGrid {
         }
     }
 
-    /// Calls `each` with every binned triangle whose cell at its level box `b` touches
-    /// (at least all whose boxes overlap `b`; some more than once). A level where `b`
-    /// spans more cells than are occupied is read whole instead of cell by cell.
+    /// Calls `each` with binned triangles near box `b`: at least every one whose box
+    /// overlaps b, some more than once (those of the cells at its level that b touches).
+    /// A level where `b` spans more cells than are occupied is read whole instead of
+    /// cell by cell.
     pub(super) fn overlapping(&self, b: (DVec3, DVec3), mut each: impl FnMut(u32)) {
         for (k, level) in self.levels.iter().enumerate() {
             let side = self.cell * (1u64 << k) as f64;
@@ -314,5 +349,79 @@ impl Level {
                 }
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Boxes (m): a 20 × 20 sheet of small triangles' boxes in z = 0 and a bundle of 32
+    /// long thin ones along x above it (a boom's triangles over a finely meshed plate).
+    fn plate_and_boom() -> Vec<(DVec3, DVec3)> {
+        let mut boxes = Vec::new();
+        for i in 0..20 {
+            for j in 0..20 {
+                let lo = DVec3::new(i as f64, j as f64, 0.0) * 0.05;
+                boxes.push((lo, lo + DVec3::new(0.01, 0.01, 0.0)));
+            }
+        }
+        for i in 0..32 {
+            let lo = DVec3::new(0.0, 0.5, 0.5) + DVec3::splat(i as f64 * 1e-4);
+            boxes.push((lo, lo + DVec3::new(1.0, 0.02, 0.02)));
+        }
+        boxes
+    }
+
+    fn near(grid: &LevelGrid, b: (DVec3, DVec3), k: u8) -> Vec<u32> {
+        let mut found = Vec::new();
+        grid.cells_near(b, k, None, |_, items| found.extend_from_slice(items));
+        found
+    }
+
+    #[test]
+    fn a_cell_is_passed_over_only_where_all_its_triangles_miss_the_box() {
+        let mut rnd = crate::test_rng(7);
+        let mut boxes = plate_and_boom();
+        // random boxes of all sizes, so that every level holds some
+        for _ in 0..300 {
+            let lo = DVec3::new(rnd(), rnd(), rnd());
+            let size = 0.3 * rnd().powi(3);
+            let shape = DVec3::new(rnd(), rnd(), rnd());
+            boxes.push((lo, lo + shape * size));
+        }
+        let grid = LevelGrid::build(&boxes, 1e-9);
+        let boom = grid.level[boxes.len() - 300 - 1];
+        assert!(boom > 0, "the boom's triangles sit above level 0");
+        // Every triangle whose box overlaps the one asked about is found (the truth: all
+        // pairs of boxes compared), at every level.
+        for _ in 0..500 {
+            let lo = DVec3::new(rnd(), rnd(), rnd()) * 1.2 - DVec3::splat(0.1);
+            let b = (lo, lo + DVec3::new(rnd(), rnd(), rnd()) * 0.1);
+            for k in 0..grid.levels.len() as u8 {
+                let found = near(&grid, b, k);
+                for (t, bt) in boxes.iter().enumerate() {
+                    let overlaps = !(bt.0.cmpgt(b.1).any() || b.0.cmpgt(bt.1).any());
+                    if overlaps && grid.level[t] == k {
+                        assert!(
+                            found.contains(&(t as u32)),
+                            "triangle {t} missed at level {k}"
+                        );
+                    }
+                }
+            }
+        }
+        // A small box beside the boom, in its cell but clear of it: the cell's triangles
+        // are not read.
+        let b = (DVec3::new(0.5, 0.56, 0.56), DVec3::new(0.51, 0.57, 0.57));
+        let boom_cells = grid.cells_near_all(b, boom);
+        assert!(boom_cells > 0, "the box lies in a cell of the boom's");
+        let found = near(&grid, b, boom);
+        assert!(
+            found
+                .iter()
+                .all(|&t| (t as usize) < 400 || (t as usize) >= 432),
+            "a boom triangle clear of the box was read: {found:?}"
+        );
     }
 }

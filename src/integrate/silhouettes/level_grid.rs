@@ -37,6 +37,10 @@ pub(super) struct Level {
     /// strut's long triangles holds tens of them, and the fine triangles around it ask
     /// the cell for its triangles one by one; most are asked in vain.
     bound: Vec<(DVec3, DVec3)>,
+    /// Above level 0, the box bounding all its cells' (m): most of a fine mesh lies
+    /// far from the few coarse triangles (a boom, a panel's edge) and need not ask
+    /// their cells one by one.
+    whole: Option<(DVec3, DVec3)>,
     /// Per cell, after [`LevelGrid::mark_faces`]: the one face all its triangles lie in,
     /// or [`MIXED`]; empty before.
     pub(super) face: Vec<u32>,
@@ -195,6 +199,11 @@ impl LevelGrid {
                     })
                 })
                 .collect();
+            level.whole = level
+                .bound
+                .iter()
+                .copied()
+                .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)));
         }
         level
     }
@@ -254,7 +263,11 @@ impl LevelGrid {
         mut each: impl FnMut(u64, &[u32]),
     ) {
         let level = &self.levels[k as usize];
-        if level.binned.is_empty() {
+        if level.binned.is_empty()
+            || level
+                .whole
+                .is_some_and(|(lo, hi)| lo.cmpgt(b.1).any() || b.0.cmpgt(hi).any())
+        {
             return;
         }
         self.cells_of(b, k, |key| {

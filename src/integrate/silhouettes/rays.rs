@@ -403,7 +403,9 @@ fn split(
     if median_only || ext[k] <= 0.0 {
         return median(range);
     }
-    let bin_of = |c: DVec3| (((c[k] - clo[k]) / ext[k] * BINS as f64) as usize).min(BINS - 1);
+    // a product, not a quotient, for every polygon at every level
+    let per_bin = BINS as f64 / ext[k];
+    let bin_of = |c: DVec3| (((c[k] - clo[k]) * per_bin) as usize).min(BINS - 1);
     let empty = (DVec3::INFINITY, DVec3::NEG_INFINITY);
     let mut bins = [(empty, 0usize); BINS];
     for &p in range.iter() {

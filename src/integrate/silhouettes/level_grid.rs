@@ -17,6 +17,9 @@ pub(super) struct LevelGrid {
     lo: DVec3,
     /// Level 0's cell side, m.
     cell: f64,
+    /// Per level, cells a metre (1 / the side, exactly halved from one level to the
+    /// next): a point's cell is a product, not a quotient.
+    per_m: Vec<f64>,
     /// Per triangle: its level, and the cell of its box's low corner at that level.
     pub(super) level: Vec<u8>,
     pub(super) first: Vec<[u32; 3]>,
@@ -49,16 +52,18 @@ pub(super) struct Level {
     pub(super) sheet: Vec<u32>,
 }
 
-/// The level of grid (level 0's cell side `cell`, m) at which box `b` spans about
+/// The level of grid (level 0's cells `per_cell` a metre) at which box `b` spans about
 /// [`CELLS`] cells or fewer: the finest at which (1 + its extent / the side) multiplied
 /// over the axes is at most that. By volume, not by its longest side: a long thin
 /// triangle (a boom's, a strut's) then sits at a level whose cells are about as thick as
 /// it is long over a few cells, not in cells as wide as it is long, which would each hold
 /// every finer triangle around it.
-fn level_of(b: &(DVec3, DVec3), cell: f64) -> u8 {
-    let extent = b.1 - b.0;
+fn level_of(b: &(DVec3, DVec3), per_cell: f64) -> u8 {
+    // in cells of the level (halved exactly at each step up): no quotient a level
+    let mut cells = (b.1 - b.0) * per_cell;
     let mut k = 0;
-    while k < 63 && (extent / (cell * (1u64 << k) as f64) + 1.0).element_product() > CELLS {
+    while k < 63 && (cells + 1.0).element_product() > CELLS {
+        cells *= 0.5;
         k += 1;
     }
     k
@@ -133,9 +138,11 @@ impl LevelGrid {
         };
         let extent = (hi - lo).max_element().max(tol);
         let cell = median.max(extent / (1u64 << (BITS - 1)) as f64).max(tol);
+        let per_m: Vec<f64> = (0..64).map(|k| 1.0 / cell * 0.5f64.powi(k)).collect();
         let mut grid = LevelGrid {
             lo,
             cell,
+            per_m,
             level: Vec::new(),
             first: Vec::new(),
             levels: Vec::new(),
@@ -143,7 +150,7 @@ impl LevelGrid {
         (grid.level, grid.first) = boxes
             .par_iter()
             .map(|b| {
-                let k = level_of(b, cell);
+                let k = level_of(b, grid.per_m[0]);
                 (k, grid.cell_at(b.0, k))
             })
             .unzip();
@@ -212,10 +219,9 @@ impl LevelGrid {
     /// the grid).
     #[inline]
     pub(super) fn cell_at(&self, p: DVec3, k: u8) -> [u32; 3] {
-        let side = self.cell * (1u64 << k) as f64;
         let max = ((1u64 << BITS) - 1) as f64;
         // clamped first, the cast truncates towards zero: the floor, without a call to it
-        ((p - self.lo) / side)
+        ((p - self.lo) * self.per_m[k as usize])
             .clamp(DVec3::ZERO, DVec3::splat(max))
             .as_uvec3()
             .to_array()

@@ -52,15 +52,15 @@ pub(super) struct Level {
     pub(super) sheet: Vec<u32>,
 }
 
-/// The level of grid (level 0's cells `per_cell` a metre) at which box `b` spans about
+/// The level of grid (level 0's cells `per_m` a metre) at which box `b` spans about
 /// [`CELLS`] cells or fewer: the finest at which (1 + its extent / the side) multiplied
 /// over the axes is at most that. By volume, not by its longest side: a long thin
 /// triangle (a boom's, a strut's) then sits at a level whose cells are about as thick as
 /// it is long over a few cells, not in cells as wide as it is long, which would each hold
 /// every finer triangle around it.
-fn level_of(b: &(DVec3, DVec3), per_cell: f64) -> u8 {
+fn level_of(b: &(DVec3, DVec3), per_m: f64) -> u8 {
     // in cells of the level (halved exactly at each step up): no quotient a level
-    let mut cells = (b.1 - b.0) * per_cell;
+    let mut cells = (b.1 - b.0) * per_m;
     let mut k = 0;
     while k < 63 && (cells + 1.0).element_product() > CELLS {
         cells *= 0.5;

@@ -15,8 +15,6 @@ use std::hash::{BuildHasherDefault, Hasher};
 /// cells fit for the panels would each hold hundreds of the dish's triangles.
 pub(super) struct LevelGrid {
     lo: DVec3,
-    /// Level 0's cell side, m.
-    cell: f64,
     /// Per level, cells a metre (1 / the side, exactly halved from one level to the
     /// next): a point's cell is a product, not a quotient.
     per_m: Vec<f64>,
@@ -114,6 +112,12 @@ impl Hasher for CellHash {
     }
 }
 
+/// Do boxes `a` and `b` (m) overlap (touching counts)?
+#[inline]
+pub(super) fn overlap(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> bool {
+    !(a.0.cmpgt(b.1).any() || b.0.cmpgt(a.1).any())
+}
+
 /// A cell whose triangles lie in more than one face.
 pub(super) const MIXED: u32 = u32::MAX;
 
@@ -141,7 +145,6 @@ impl LevelGrid {
         let per_m: Vec<f64> = (0..64).map(|k| 1.0 / cell * 0.5f64.powi(k)).collect();
         let mut grid = LevelGrid {
             lo,
-            cell,
             per_m,
             level: Vec::new(),
             first: Vec::new(),
@@ -269,11 +272,7 @@ impl LevelGrid {
         mut each: impl FnMut(u64, &[u32]),
     ) {
         let level = &self.levels[k as usize];
-        if level.binned.is_empty()
-            || level
-                .whole
-                .is_some_and(|(lo, hi)| lo.cmpgt(b.1).any() || b.0.cmpgt(hi).any())
-        {
+        if level.binned.is_empty() || level.whole.is_some_and(|w| !overlap(w, b)) {
             return;
         }
         self.cells_of(b, k, |key| {
@@ -281,10 +280,8 @@ impl LevelGrid {
                 if except.is_some() && level.face.get(i as usize) == except.as_ref() {
                     return;
                 }
-                if let Some(&(lo, hi)) = level.bound.get(i as usize) {
-                    if lo.cmpgt(b.1).any() || b.0.cmpgt(hi).any() {
-                        return;
-                    }
+                if level.bound.get(i as usize).is_some_and(|&c| !overlap(c, b)) {
+                    return;
                 }
                 let (s, e) = (level.start[i as usize], level.start[i as usize + 1]);
                 each(key, &level.binned[s as usize..e as usize]);
@@ -340,8 +337,7 @@ impl LevelGrid {
     /// cell by cell.
     pub(super) fn overlapping(&self, b: (DVec3, DVec3), mut each: impl FnMut(u32)) {
         for (k, level) in self.levels.iter().enumerate() {
-            let side = self.cell * (1u64 << k) as f64;
-            let span = ((b.1 - b.0) / side + DVec3::splat(2.0)).element_product();
+            let span = ((b.1 - b.0) * self.per_m[k] + DVec3::splat(2.0)).element_product();
             if span > level.keys.len() as f64 {
                 level.binned.iter().for_each(|&t| each(t));
             } else {
@@ -420,8 +416,7 @@ mod tests {
             for k in 0..grid.levels.len() as u8 {
                 let found = near(&grid, b, k);
                 for (t, bt) in boxes.iter().enumerate() {
-                    let overlaps = !(bt.0.cmpgt(b.1).any() || b.0.cmpgt(bt.1).any());
-                    if overlaps && grid.level[t] == k {
+                    if overlap(*bt, b) && grid.level[t] == k {
                         assert!(
                             found.contains(&(t as u32)),
                             "triangle {t} missed at level {k}"

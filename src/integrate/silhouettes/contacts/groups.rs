@@ -3,10 +3,10 @@
 
 use super::join::join_pieces;
 use super::meet::meet;
-use super::search::{box_of, overlap};
+use super::search::box_of;
 use super::Contact;
 use crate::geometry::Mesh;
-use crate::integrate::silhouettes::level_grid::LevelGrid;
+use crate::integrate::silhouettes::level_grid::{overlap, LevelGrid};
 use glam::DVec3;
 
 /// Per group of triangles that move as one (the body, each articulated link): where its

@@ -8,7 +8,7 @@ use super::meet::{meeting, meeting_of, Tri};
 use super::Contact;
 use crate::geometry::faces::WeldedEdge;
 use crate::geometry::Mesh;
-use crate::integrate::silhouettes::level_grid::{LevelGrid, MIXED};
+use crate::integrate::silhouettes::level_grid::{overlap, LevelGrid, MIXED};
 use crate::integrate::silhouettes::sheets::{sheets, NONE};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -296,12 +296,6 @@ impl TriangleGrid {
         let grid = LevelGrid::build(&boxes, tol);
         TriangleGrid { boxes, grid, tol }
     }
-}
-
-/// Do boxes `a` and `b` overlap (touching counts)?
-#[inline]
-pub(super) fn overlap(a: (DVec3, DVec3), b: (DVec3, DVec3)) -> bool {
-    !(a.0.cmpgt(b.1).any() || b.0.cmpgt(a.1).any())
 }
 
 /// A triangle's box widened by `tol` (m).

@@ -3,8 +3,9 @@
 //! the folds above the patch, the patch clean when none reaches it, or each receiving
 //! face with the fold lines that cross it.
 
+use super::fold_tree::FoldTree;
 use super::folds::Fold;
-use super::lines::{self, Across, Line, LineGrid};
+use super::lines::{self, Across, Line};
 use super::patches::Facing;
 use super::slab::SlabAlong;
 use super::tally::{self, Tally};
@@ -75,10 +76,7 @@ pub struct Direction {
     /// again). Bits, not a stamp per edge: at ~200k triangles a stamp per edge (1.2 MB)
     /// left the cache, and the flood asks about every edge it crosses.
     pub(super) fold_bits: Vec<u64>,
-    pub(super) grid: LineGrid,
-    /// Per fold: the last patch query that met it (candidates once per patch).
-    pub(super) stamp: Vec<u32>,
-    pub(super) query: u32,
+    pub(super) tree: FoldTree,
     /// The folds above the patch being decided, with their boxes across d and tops;
     /// its receivers' footprints; the corners across d of the face being tested.
     pub(super) near: Vec<Near>,
@@ -220,20 +218,12 @@ impl Silhouettes<'_> {
         let at = DVec2::new(c.dot(u), c.dot(w));
         let half = DVec2::new(reach(u), reach(w)) + DVec2::splat(self.tol);
         let bottom = c.dot(d) - reach(d) - self.eps;
-        dir.query = dir.query.wrapping_add(1);
-        let query = dir.query;
         dir.near.clear();
-        let (folds, stamp, near) = (&dir.folds, &mut dir.stamp, &mut dir.near);
+        let (folds, near) = (&dir.folds, &mut dir.near);
         let (plo, phi) = (at - half, at + half);
-        dir.grid.query(plo, phi, |i| {
+        dir.tree.query(plo, phi, bottom, |i| {
             tally::add(Tally::QueryFolds, 1);
-            let iu = i as usize;
-            if stamp[iu] == query {
-                tally::add(Tally::QueryAgain, 1);
-                return;
-            }
-            stamp[iu] = query;
-            let fold = &folds[iu];
+            let fold = &folds[i as usize];
             if fold.top <= bottom {
                 tally::add(Tally::QueryBelow, 1);
                 return;

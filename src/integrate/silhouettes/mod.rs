@@ -26,12 +26,12 @@
 //! 1. each patch's cone says whether it faces along d, away, or both ways;
 //! 2. the folds are found inside the patches that face both ways and on the rims
 //!    between patches that face differently ([`folds`]);
-//! 3. the folds are binned across d, and each patch with faces to decide asks for the
-//!    folds above its box (a flat one keeps those that may shade its [`slab`]): a patch
-//!    that faces along d and that none reaches is *clean*
-//!    (one count for all its faces), and so is one whose faces no fold crosses; in the
-//!    others each face is tested against the folds found, and each fold that crosses it
-//!    becomes a line in its plane ([`direction`], [`lines`]);
+//! 3. the folds are put in a tree of their boxes across d ([`fold_tree`]), and each
+//!    patch with faces to decide asks it for the folds above its box (a flat one keeps
+//!    those that may shade its [`slab`]): a patch that faces along d and that none
+//!    reaches is *clean* (one count for all its faces), and so is one whose faces no
+//!    fold crosses; in the others each face is tested against the folds found, and each
+//!    fold that crosses it becomes a line in its plane ([`direction`], [`lines`]);
 //! 4. one ray counts the sheets above the first unit of each connected region, and the
 //!    count floods the rest across edges, through crossed faces by the jumps of the
 //!    lines a path crosses ([`counts`]).
@@ -62,6 +62,7 @@ mod cells;
 mod contacts;
 mod counts;
 mod direction;
+mod fold_tree;
 mod folds;
 mod level_grid;
 mod lines;
@@ -383,11 +384,8 @@ impl<'a> Silhouettes<'a> {
         tally::took(Tally::FoldSearchNs, since);
         let since = tally::now();
         dir.mark_folds(self.topo.edges.len());
-        dir.grid.build(&dir.folds, self.tol);
-        tally::took(Tally::FoldGridNs, since);
-        dir.stamp.clear();
-        dir.stamp.resize(dir.folds.len(), 0);
-        dir.query = 0;
+        dir.tree.build(&mut dir.folds);
+        tally::took(Tally::FoldTreeNs, since);
         dir.patch.clear();
         dir.patch.resize(np, PatchState::Off);
         dir.patch_count.clear();

@@ -43,24 +43,22 @@ pub enum Tally {
     FacesOneByOne,
     FacesInSums,
     FacesInCrossedSums,
-    /// The patches' queries for the folds above them: the folds met in the grid's cells,
-    /// of which met again (in another cell of the query), below the patch along d, off
-    /// its box, off its slab; the rest are kept as near. Then, per receiving face of a
+    /// The patches' queries for the folds above them: the folds met in the tree's leaves,
+    /// of which below the patch along d, off its box, off its slab; the rest are kept as near. Then, per receiving face of a
     /// dirty patch, the near folds scanned, and those whose box reaches the face's
     /// corners and are tested exactly.
     QueryFolds,
-    QueryAgain,
     QueryBelow,
     QueryOffBox,
     QueryOffSlab,
     NearScanned,
     NearTested,
-    /// Time (ns) per direction: the fold search, the folds' grid, the patches' queries
+    /// Time (ns) per direction: the fold search, the folds' tree, the patches' queries
     /// for folds, the dirty patches' footprints (and their near folds narrowed to them),
     /// their faces' lines, the flood of counts (its rays included); per epoch: the areas
     /// of lit and seen faces (the crossed ones cut into cells) and the whole epoch.
     FoldSearchNs,
-    FoldGridNs,
+    FoldTreeNs,
     QueriesNs,
     FootprintsNs,
     FaceLinesNs,
@@ -171,10 +169,10 @@ pub fn report() -> Option<String> {
         "per direction ({} directions):\n  \
          fold search: {:.0} mixed patches with {:.0} faces, {:.0} inner and {:.0} rim edges tested, {:.0} folds\n  \
          patches: {:.0} clean, {:.0} dirty with {:.0} faces, {:.0} of them crossed by {:.0} lines\n  \
-         fold queries: {:.0} folds met in cells, {:.0} again, {:.0} below, {:.0} off the box, {:.0} off the slab; \
+         fold queries: {:.0} folds met in leaves, {:.0} below, {:.0} off the box, {:.0} off the slab; \
          faces' scans: {:.0} near folds, {:.0} tested exactly\n  \
          rays: {:.1} a direction, each visiting {:.1} nodes, {:.1} leaf polygons, {:.1} planes met\n  \
-         µs: fold search {:.1}, fold grid {:.1}, fold queries {:.1}, footprints {:.1}, faces' lines {:.1}, flood {:.1}\n\
+         µs: fold search {:.1}, folds' tree {:.1}, fold queries {:.1}, footprints {:.1}, faces' lines {:.1}, flood {:.1}\n\
          per epoch ({} epochs): light summed over {:.0} faces one by one, {:.0} in whole patches \
          ({:.0} of them in patches a line crosses); \
          µs: areas {:.1}, whole epoch {:.1}\n\
@@ -192,7 +190,6 @@ pub fn report() -> Option<String> {
         per_dir(Tally::CrossedFaces),
         per_dir(Tally::Lines),
         per_dir(Tally::QueryFolds),
-        per_dir(Tally::QueryAgain),
         per_dir(Tally::QueryBelow),
         per_dir(Tally::QueryOffBox),
         per_dir(Tally::QueryOffSlab),
@@ -203,7 +200,7 @@ pub fn report() -> Option<String> {
         per_ray(Tally::RayLeafPolygons),
         per_ray(Tally::RayPlanes),
         us(per_dir(Tally::FoldSearchNs)),
-        us(per_dir(Tally::FoldGridNs)),
+        us(per_dir(Tally::FoldTreeNs)),
         us(per_dir(Tally::QueriesNs)),
         us(per_dir(Tally::FootprintsNs)),
         us(per_dir(Tally::FaceLinesNs)),

@@ -228,7 +228,7 @@ impl Silhouettes<'_> {
                 tally::add(Tally::QueryBelow, 1);
                 return;
             }
-            let (lo, hi) = (fold.pa.min(fold.pb), fold.pa.max(fold.pb));
+            let (lo, hi) = fold.box_across();
             if lo.cmpgt(phi).any() || hi.cmplt(plo).any() || !line_meets_box(fold, plo, phi) {
                 tally::add(Tally::QueryOffBox, 1);
                 return;

@@ -44,11 +44,7 @@ impl FoldTree {
         if folds.is_empty() {
             return;
         }
-        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for f in folds.iter() {
-            lo = lo.min(f.pa.min(f.pb));
-            hi = hi.max(f.pa.max(f.pb));
-        }
+        let (lo, hi, _) = bounds(folds);
         // centres on a 2^16 lattice over the folds' box
         let scale = DVec2::splat(65535.0) / (hi - lo).max(DVec2::splat(1e-300));
         self.keys.clear();
@@ -81,20 +77,7 @@ impl FoldTree {
         });
         let (lo, hi, top) = if b - a <= LEAF {
             self.nodes[at].count = (b - a) as u32;
-            folds[a..b].iter().fold(
-                (
-                    DVec2::splat(f64::INFINITY),
-                    DVec2::splat(f64::NEG_INFINITY),
-                    f64::NEG_INFINITY,
-                ),
-                |(lo, hi, top), f| {
-                    (
-                        lo.min(f.pa.min(f.pb)),
-                        hi.max(f.pa.max(f.pb)),
-                        top.max(f.top),
-                    )
-                },
-            )
+            bounds(&folds[a..b])
         } else {
             // halves in whole leaves, so that only the last leaf is short
             let m = a + (b - a).div_ceil(2 * LEAF) * LEAF;
@@ -134,6 +117,19 @@ impl FoldTree {
             i += 1;
         }
     }
+}
+
+/// The box across d (m) and the highest top along d (m) of `folds`.
+fn bounds(folds: &[Fold]) -> (DVec2, DVec2, f64) {
+    let empty = (
+        DVec2::splat(f64::INFINITY),
+        DVec2::splat(f64::NEG_INFINITY),
+        f64::NEG_INFINITY,
+    );
+    folds.iter().fold(empty, |(lo, hi, top), f| {
+        let (flo, fhi) = f.box_across();
+        (lo.min(flo), hi.max(fhi), top.max(f.top))
+    })
 }
 
 /// The bits of `x` and `y` (16 each) interleaved, `x` in the even bits.
@@ -213,9 +209,8 @@ mod tests {
                 seen.dedup();
                 assert_eq!(seen.len(), got.len(), "a fold met twice");
                 for (i, f) in folds.iter().enumerate() {
-                    let meets = f.top > bottom
-                        && f.pa.min(f.pb).cmple(hi).all()
-                        && f.pa.max(f.pb).cmpge(lo).all();
+                    let (flo, fhi) = f.box_across();
+                    let meets = f.top > bottom && flo.cmple(hi).all() && fhi.cmpge(lo).all();
                     if meets {
                         assert!(got.contains(&(i as u32)), "fold {i} of {n} missed");
                     }

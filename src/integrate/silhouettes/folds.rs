@@ -33,6 +33,14 @@ pub struct Fold {
     pub edge: u32,
 }
 
+impl Fold {
+    /// Its box across d (lowest, highest corner; m).
+    #[inline]
+    pub fn box_across(&self) -> (DVec2, DVec2) {
+        (self.pa.min(self.pb), self.pa.max(self.pb))
+    }
+}
+
 /// Finds every fold along unit `d` (every edge that is one, except perhaps an edge
 /// whose two triangles wind the same way along it: the search does not look inside a
 /// patch that faces one way) (basis across it `(u, w)`, u × w = d); `facing`: each

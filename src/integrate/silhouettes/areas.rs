@@ -5,6 +5,7 @@
 
 use super::cells::{area_centroid, crosses};
 use super::direction::{Direction, FaceState, PatchState};
+use super::fan::Fan;
 use super::polygon_tree::Visit;
 use super::ray_memo::{push_new, RayMemo};
 use super::{Scratch, Silhouettes, FEW_LINES, MAX_CELLS, SAMPLES};
@@ -28,6 +29,27 @@ impl Status {
     fn cuts(self) -> bool {
         matches!(self, Status::Counted | Status::Rays)
     }
+}
+
+/// Lines of a face past which its cells are counted through a [`Fan`]: below, reading
+/// every line costs less than building it.
+const FAN_LINES: usize = 24;
+
+/// Per direction that counts face `face` (`status`) across many lines, its lines put in
+/// `fans`; says which directions have one.
+fn build_fans(
+    fans: &mut PerDirection<Fan>,
+    dirs: &PerDirection<Direction>,
+    status: &PerDirection<Status>,
+    face: usize,
+) -> PerDirection<bool> {
+    PerDirection::from_fn(|k| {
+        let many = status[k] == Status::Counted && dirs[k].lines_of(face).len() >= FAN_LINES;
+        if many {
+            fans[k].build(dirs[k].lines_of(face), dirs[k].face_ref[face]);
+        }
+        many
+    })
 }
 
 impl Silhouettes<'_> {
@@ -145,6 +167,8 @@ impl Silhouettes<'_> {
             );
         }
         let whole = self.cut_into_cells(scratch, face, &status);
+        let with_fan = build_fans(&mut scratch.fans, &scratch.dirs, &status, face);
+        let fans = PerDirection::from_fn(|k| with_fan[k].then_some(&scratch.fans[k]));
         let (cells, dirs, memo) = (&scratch.cells, &scratch.dirs, &mut scratch.memo);
         for k in Toward::ALL {
             if status[k] == Status::Rays {
@@ -156,8 +180,9 @@ impl Silhouettes<'_> {
             }
         }
         let mut rays = 0u64;
-        let mut decide =
-            |q: DVec2, share: bool| self.decide(dirs, &status, face, (q, share), memo, &mut rays);
+        let mut decide = |q: DVec2, share: bool| {
+            self.decide(dirs, (&status, &fans), face, (q, share), memo, &mut rays)
+        };
         let (mut a_sun, mut a_earth) = (0.0, 0.0);
         if whole {
             // A cell's centroid lies within the margin of a line it was cut along only if
@@ -216,6 +241,8 @@ impl Silhouettes<'_> {
             cells,
             cutter,
             lines,
+            near,
+            fans,
             ..
         } = scratch;
         lines.clear();
@@ -231,10 +258,12 @@ impl Silhouettes<'_> {
             return None;
         }
         let (view_lines, light_lines) = lines.split_at(seen_by);
+        let with_fan = build_fans(fans, dirs, status, face);
+        let fan = |k: Toward| with_fan[k].then_some(&fans[k]);
         let open = |k: Toward, q: DVec2| match status[k] {
             Status::Clear => true,
             Status::Dark => false,
-            _ => dirs[k].counts_none_at(face, q),
+            _ => dirs[k].counts_none_via(face, q, fan(k)),
         };
         let tol = self.tol;
         cells.clear();
@@ -243,7 +272,7 @@ impl Silhouettes<'_> {
         let complete = cutter.cut(poly, view_lines, tol, MAX_CELLS, |c| {
             made += 1;
             let (a, q) = area_centroid(c);
-            if a > 0.0 && dirs.view.counts_none_at(face, q) {
+            if a > 0.0 && open(Toward::View, q) {
                 cells.push(c.iter().copied());
             }
         });
@@ -253,7 +282,18 @@ impl Silhouettes<'_> {
         let (mut a_sun, mut a_earth) = (0.0, 0.0);
         for i in 0..cells.len() {
             let room = MAX_CELLS.checked_sub(made)?;
-            let complete = cutter.cut(cells.cell(i), light_lines, tol, room, |c| {
+            // the light lines that reach the cell's box: the others cannot cross it, and
+            // a face of hundreds of lines is cut into hundreds of seen cells
+            let cell = cells.cell(i);
+            let (lo, hi) = bounds(cell);
+            let (lo, hi) = (lo - DVec2::splat(tol), hi + DVec2::splat(tol));
+            near.clear();
+            near.extend(
+                light_lines
+                    .iter()
+                    .filter(|(a, b)| !(a.min(*b).cmpgt(hi).any() || a.max(*b).cmplt(lo).any())),
+            );
+            let complete = cutter.cut(cell, near, tol, room, |c| {
                 made += 1;
                 let (a, q) = area_centroid(c);
                 if a > 0.0 {
@@ -360,10 +400,11 @@ impl Silhouettes<'_> {
     /// coordinates), each direction deciding as `status` says (by rays where `memo` has
     /// no answer for `q`'s region yet, a ray's answer remembered for the region if `q`
     /// may `share` it); counts the rays cast.
+    #[inline(always)]
     fn decide(
         &self,
         dirs: &PerDirection<Direction>,
-        status: &PerDirection<Status>,
+        (status, fans): (&PerDirection<Status>, &PerDirection<Option<&Fan>>),
         face: usize,
         (q, share): (DVec2, bool),
         memo: &mut PerDirection<RayMemo>,
@@ -374,7 +415,7 @@ impl Silhouettes<'_> {
             open[k] = match status[k] {
                 Status::Clear => true,
                 Status::Dark => false,
-                Status::Counted => dirs[k].counts_none_at(face, q),
+                Status::Counted => dirs[k].counts_none_via(face, q, fans[k]),
                 Status::Rays => memo[k].open(q, share, || {
                     *rays += 1;
                     let d = dirs[k].across.d;

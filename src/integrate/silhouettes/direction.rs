@@ -3,6 +3,7 @@
 //! the folds above the patch, the patch clean when none reaches it, or each receiving
 //! face with the fold lines that cross it.
 
+use super::fan::Fan;
 use super::fold_tree::FoldTree;
 use super::folds::Fold;
 use super::lines::{self, Across, Line};
@@ -157,6 +158,16 @@ impl Direction {
     #[inline]
     pub(super) fn counts_none_at(&self, f: usize, q: DVec2) -> bool {
         self.face_count[f] + lines::crossed(self.lines_of(f), self.face_ref[f], q) == 0
+    }
+
+    /// [`Direction::counts_none_at`], the lines read through `fan` (built from face `f`'s
+    /// lines about its reference) when there is one.
+    #[inline]
+    pub(super) fn counts_none_via(&self, f: usize, q: DVec2, fan: Option<&Fan>) -> bool {
+        match fan {
+            Some(fan) => self.face_count[f] + fan.crossed(self.lines_of(f), q) == 0,
+            None => self.counts_none_at(f, q),
+        }
     }
 }
 

@@ -62,6 +62,7 @@ mod cells;
 mod contacts;
 mod counts;
 mod direction;
+mod fan;
 mod fold_tree;
 mod folds;
 mod level_grid;
@@ -138,6 +139,11 @@ pub struct Scratch {
     /// Per direction: ray answers shared between a face's cells.
     memo: PerDirection<ray_memo::RayMemo>,
     lines: Vec<(DVec2, DVec2)>,
+    /// The lines near one cell of a face.
+    near: Vec<(DVec2, DVec2)>,
+    /// Per direction, the lines of the face being cut in buckets of angle about its
+    /// reference, when it has many.
+    fans: PerDirection<fan::Fan>,
 }
 
 /// Per triangle its face, and per face whether its material is two-sided.

@@ -2,6 +2,7 @@
 //! cross a face lies on one of the lines, each cell is wholly lit or wholly dark along
 //! every direction, and one ray from its centroid decides it.
 
+use crate::geometry::polygon::bounds;
 use glam::DVec2;
 
 /// Convex cells in one flat buffer: `spans[i]` is cell i's range of `points`. Beside
@@ -229,11 +230,7 @@ impl Cutter {
         segs: &[(DVec2, DVec2)],
         tol: f64,
     ) -> Option<(DVec2, DVec2)> {
-        let (lo, hi) = self.points[points]
-            .iter()
-            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &q| {
-                (lo.min(q), hi.max(q))
-            });
+        let (lo, hi) = bounds(&self.points[points]);
         let axis = if hi.x - lo.x >= hi.y - lo.y { 0 } else { 1 };
         self.mids.clear();
         self.mids
@@ -251,14 +248,14 @@ impl Cutter {
         } else {
             (DVec2::new(lo.x, m), DVec2::NEG_X)
         };
-        // worth it only when most candidates lie on one side (long segments across the
-        // piece would all go to both halves, and halving again would not end)
+        // worth it only when neither half keeps more than three quarters of them (long
+        // segments across the piece would go to both halves, and halving again would not
+        // end)
         let (mut left, mut right) = (0, 0);
         for &(i, _) in &self.cand[cands.clone()] {
-            let (a, b) = segs[i as usize];
-            let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
-            left += usize::from(sa.max(sb) >= -2.0 * tol);
-            right += usize::from(sa.min(sb) <= 2.0 * tol);
+            let (l, r) = reaches(segs[i as usize], p, dir, tol);
+            left += usize::from(l);
+            right += usize::from(r);
         }
         let most = 3 * cands.len() / 4;
         (left <= most && right <= most).then_some((p, dir))
@@ -282,11 +279,10 @@ impl Cutter {
         self.right.clear();
         for k in cands {
             let (i, _) = self.cand[k];
-            let (a, b) = segs[i as usize];
-            let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
-            if sa.min(sb) > 2.0 * tol {
+            let (left, right) = reaches(segs[i as usize], p, dir, tol);
+            if !right {
                 self.cand.push((i, true));
-            } else if sa.max(sb) < -2.0 * tol {
+            } else if !left {
                 self.right.push((i, true));
             } else {
                 self.cand.push((i, false));
@@ -306,6 +302,20 @@ impl Cutter {
                 cand: (cand.0 as u32, cand.1 as u32),
             });
         }
+    }
+}
+
+/// Whether segment `(a, b)` reaches the left and the right of the line through `p` along
+/// unit `dir` (beyond twice `tol`, m, from it on one side, it reaches only that side).
+#[inline(always)]
+fn reaches((a, b): (DVec2, DVec2), p: DVec2, dir: DVec2, tol: f64) -> (bool, bool) {
+    let (sa, sb) = (dir.perp_dot(a - p), dir.perp_dot(b - p));
+    if sa.min(sb) > 2.0 * tol {
+        (true, false)
+    } else if sa.max(sb) < -2.0 * tol {
+        (false, true)
+    } else {
+        (true, true)
     }
 }
 

@@ -54,13 +54,13 @@ impl Fan {
     pub fn build(&mut self, lines: &[Line], r: DVec2) {
         self.r = r;
         self.spans.clear();
-        // a line this close to r (relative to its length) is seen under any angle
         for l in lines {
             let (a, b) = (l.p - r, l.q - r);
+            // a line whose own line passes this close to r (for its length), or a point,
+            // is put in every bucket: its span's ends could not be trusted
             let near = {
                 let e = l.q - l.p;
                 let el = e.length();
-                // distance from r to the segment's line, against the segment's length
                 el == 0.0 || e.perp_dot(a).abs() <= 1e-6 * el * el || a == DVec2::ZERO
             };
             let (aa, ab) = (pseudo_angle(a), pseudo_angle(b));

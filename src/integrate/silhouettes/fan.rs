@@ -123,20 +123,12 @@ impl Fan {
 mod tests {
     use super::*;
 
-    /// A deterministic generator in [0, 1).
-    fn rng(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*seed >> 11) as f64 / (1u64 << 53) as f64
-    }
-
     #[test]
     fn the_fan_counts_as_every_line_counts_at_every_point() {
         // Lines as a face's shadows make them: a fine polyline round a circle (joints
         // shared exactly), long lines across the face, short ones scattered, one through
         // the reference's neighbourhood; points anywhere, on lines and at joints.
-        let mut seed = 7u64;
+        let mut rng = crate::test_rng(7);
         let r = DVec2::new(0.1, -0.05);
         let mut lines = Vec::new();
         let n = 300;
@@ -153,13 +145,12 @@ mod tests {
             });
         }
         for _ in 0..200 {
-            let p = DVec2::new(rng(&mut seed) * 2.0 - 1.0, rng(&mut seed) * 2.0 - 1.0);
-            let q = p + DVec2::new(rng(&mut seed) - 0.5, rng(&mut seed) - 0.5)
-                * if rng(&mut seed) < 0.2 { 4.0 } else { 0.3 };
+            let p = DVec2::new(rng() * 2.0 - 1.0, rng() * 2.0 - 1.0);
+            let q = p + DVec2::new(rng() - 0.5, rng() - 0.5) * if rng() < 0.2 { 4.0 } else { 0.3 };
             lines.push(Line {
                 p,
                 q,
-                jump: if rng(&mut seed) < 0.5 { -1 } else { 2 },
+                jump: if rng() < 0.5 { -1 } else { 2 },
                 bounds: true,
             });
         }
@@ -172,7 +163,7 @@ mod tests {
         let mut fan = Fan::default();
         fan.build(&lines, r);
         let mut points: Vec<DVec2> = (0..20_000)
-            .map(|_| DVec2::new(rng(&mut seed) * 3.0 - 1.5, rng(&mut seed) * 3.0 - 1.5))
+            .map(|_| DVec2::new(rng() * 3.0 - 1.5, rng() * 3.0 - 1.5))
             .collect();
         points.extend((0..n).map(at));
         points.extend(lines.iter().map(|l| (l.p + l.q) * 0.5));

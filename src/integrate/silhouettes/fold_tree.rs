@@ -163,32 +163,19 @@ mod tests {
         }
     }
 
-    /// A fixed pseudo-random sequence in [0, 1).
-    fn uniform(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (*seed >> 11) as f64 / (1u64 << 53) as f64
-    }
-
     #[test]
     fn a_query_finds_each_fold_above_and_over_the_box_once_as_all_pairs_compared_do() {
-        let mut seed = 7;
+        let mut uniform = crate::test_rng(7);
         for n in [0usize, 1, 3, 4, 5, 17, 64, 333] {
             // crowded in one corner, sparse elsewhere, short and long, some degenerate
             let mut folds: Vec<Fold> = (0..n)
                 .map(|e| {
-                    let crowd = uniform(&mut seed) < 0.7;
+                    let crowd = uniform() < 0.7;
                     let s = if crowd { 0.1 } else { 10.0 };
-                    let pa = DVec2::new(uniform(&mut seed), uniform(&mut seed)) * s;
-                    let len = if e % 5 == 0 {
-                        0.0
-                    } else {
-                        uniform(&mut seed) * s * 0.3
-                    };
-                    let pb =
-                        pa + DVec2::new(uniform(&mut seed) - 0.5, uniform(&mut seed) - 0.5) * len;
-                    fold(pa, pb, uniform(&mut seed) * 4.0 - 2.0, e as u32)
+                    let pa = DVec2::new(uniform(), uniform()) * s;
+                    let len = if e % 5 == 0 { 0.0 } else { uniform() * s * 0.3 };
+                    let pb = pa + DVec2::new(uniform() - 0.5, uniform() - 0.5) * len;
+                    fold(pa, pb, uniform() * 4.0 - 2.0, e as u32)
                 })
                 .collect();
             let mut tree = FoldTree::default();
@@ -198,10 +185,9 @@ mod tests {
             edges.sort_unstable();
             assert_eq!(edges, (0..n as u32).collect::<Vec<_>>());
             for _ in 0..200 {
-                let c =
-                    DVec2::new(uniform(&mut seed), uniform(&mut seed)) * 10.0 * uniform(&mut seed);
-                let h = DVec2::new(uniform(&mut seed), uniform(&mut seed)) * uniform(&mut seed);
-                let (lo, hi, bottom) = (c - h, c + h, uniform(&mut seed) * 4.0 - 2.0);
+                let c = DVec2::new(uniform(), uniform()) * 10.0 * uniform();
+                let h = DVec2::new(uniform(), uniform()) * uniform();
+                let (lo, hi, bottom) = (c - h, c + h, uniform() * 4.0 - 2.0);
                 let mut got = Vec::new();
                 tree.query(lo, hi, bottom, |i| got.push(i));
                 let mut seen = got.clone();

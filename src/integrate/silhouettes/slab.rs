@@ -150,13 +150,7 @@ mod tests {
         let corners: Vec<DVec3> = (0..b.polys.len())
             .flat_map(|k| b.polys.corners3(k).to_vec())
             .collect();
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::test_rng(0x9e37_79b9_7f4a_7c15);
         let shades = |p: usize, a: DVec3, c: DVec3, d: DVec3| {
             b.patches.faces_of(p).iter().any(|&f| {
                 let f = f as usize;

@@ -7,6 +7,7 @@
 //! the square of its lines.
 
 use super::lines::{crossed, Line};
+use crate::geometry::csr::csr_of;
 use glam::DVec2;
 
 /// Buckets of angle about the reference (each 5.6°).
@@ -23,8 +24,6 @@ pub struct Fan {
     members: Vec<u32>,
     /// Per line, its first and last bucket (the last may wrap below the first).
     spans: Vec<(u32, u32)>,
-    /// Per bucket, where its next member goes while the buckets are filled.
-    next: Vec<u32>,
 }
 
 /// A monotone stand-in for the angle of `v` (0 ≤ a < 4 for a turn), that maps −v to
@@ -57,18 +56,15 @@ impl Fan {
         for l in lines {
             let (a, b) = (l.p - r, l.q - r);
             // a line whose own line passes this close to r (for its length), or a point,
-            // is put in every bucket: its span's ends could not be trusted
-            let near = {
-                let e = l.q - l.p;
-                let el = e.length();
-                el == 0.0 || e.perp_dot(a).abs() <= 1e-6 * el * el || a == DVec2::ZERO
-            };
-            let (aa, ab) = (pseudo_angle(a), pseudo_angle(b));
-            let forward = (ab - aa).rem_euclid(4.0);
-            if near || !aa.is_finite() || !ab.is_finite() || forward.is_nan() {
+            // is put in every bucket: its span's ends could not be trusted (an end at r
+            // or a line of no length falls here too)
+            let e = l.q - l.p;
+            if e.perp_dot(a).abs() <= 1e-6 * e.length_squared() {
                 self.spans.push((0, BUCKETS as u32 - 1));
                 continue;
             }
+            let (aa, ab) = (pseudo_angle(a), pseudo_angle(b));
+            let forward = (ab - aa).rem_euclid(4.0);
             // the shorter way round: a segment clear of r is seen under less than half a
             // turn
             let (from, to) = if forward <= 2.0 { (aa, ab) } else { (ab, aa) };
@@ -78,28 +74,14 @@ impl Fan {
         }
         let buckets_of = |&(first, last): &(u32, u32)| {
             let n = (last + BUCKETS as u32 - first) % BUCKETS as u32 + 1;
-            (0..n).map(move |k| (first + k) as usize % BUCKETS)
+            (0..n).map(move |k| (first + k) % BUCKETS as u32)
         };
-        self.start.clear();
-        self.start.resize(BUCKETS + 1, 0);
-        for s in &self.spans {
-            for b in buckets_of(s) {
-                self.start[b + 1] += 1;
-            }
-        }
-        for b in 0..BUCKETS {
-            self.start[b + 1] += self.start[b];
-        }
-        self.members.clear();
-        self.members.resize(self.start[BUCKETS] as usize, 0);
-        self.next.clear();
-        self.next.extend_from_slice(&self.start[..BUCKETS]);
-        for (i, s) in self.spans.iter().enumerate() {
-            for b in buckets_of(s) {
-                self.members[self.next[b] as usize] = i as u32;
-                self.next[b] += 1;
-            }
-        }
+        let members = self
+            .spans
+            .iter()
+            .enumerate()
+            .flat_map(move |(i, s)| buckets_of(s).map(move |b| (b, i as u32)));
+        (self.start, self.members) = csr_of(BUCKETS, members);
     }
 
     /// [`crossed`]`(lines, r, q)` for the `lines` the fan was built from: the same sum,
